@@ -1,0 +1,48 @@
+//! Twisting between a vertex frame and one incident edge over half the edge:
+//! E = GJ (m − m̄)² / (2 l̄), l̄ = |ē|/2, with m the angle from the frame's d1 (parallel
+//! transported from the frame tangent to the edge tangent) to the edge's m1, about the edge tangent.
+//! The reference part (to the edge's reference director u) is unwrapped by 2π from its last
+//! accepted value; the edge's own angle enters linearly.
+
+use super::{Category, Term};
+use crate::math::vec::{signed_angle, transport};
+use crate::math::Real;
+use crate::network::port::{half_stencil, Port};
+use crate::network::state::State;
+use crate::rod::frames::unwrap_angle;
+
+#[derive(Debug, Clone)]
+pub struct FrameTwist {
+    /// (x_vertex, x_other, θ, ω, α).
+    pub vars: [usize; 11],
+    pub port: Port,
+    pub edge: usize,
+    pub sign: f64,
+    pub slot: usize,
+    pub rest: f64,
+    pub voronoi: f64,
+    pub gj: f64,
+}
+
+impl FrameTwist {
+    pub fn reference_twist<T: Real>(&self, st: &State, x: &[T; 11]) -> T {
+        let h = half_stencil(st, &self.port, self.edge, self.sign, x);
+        let raw = signed_angle(transport(h.tf, h.te, h.d1), h.u, h.te);
+        unwrap_angle(raw, st.twist_prev[self.slot])
+    }
+
+    pub fn twist<T: Real>(&self, st: &State, x: &[T; 11]) -> T {
+        self.reference_twist(st, x) + x[6] * self.sign
+    }
+}
+
+impl Term<11> for FrameTwist {
+    const CATEGORY: Category = Category::Twist;
+    fn vars(&self) -> &[usize; 11] {
+        &self.vars
+    }
+    fn eval<T: Real>(&self, st: &State, x: &[T; 11]) -> T {
+        let d = self.twist(st, x) - self.rest;
+        d * d * (0.5 * self.gj / self.voronoi)
+    }
+}

@@ -1,0 +1,2 @@
+//! Elastic gridshells: the Chebyshev net on the sphere and (later) the hemisphere form-finding job.
+pub mod chebyshev;

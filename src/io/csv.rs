@@ -1,0 +1,45 @@
+//! CSV export: one row per node with position, the twist angle of the following edge, and the
+//! bending strain and stress at the node's extreme fibre.
+
+use std::fmt::Write;
+
+use crate::io::results::Results;
+use crate::io::stress::vertex_bending;
+use crate::network::build::Network;
+
+pub fn to_csv(net: &Network, r: &Results) -> String {
+    let mut s = String::from("rod,index,x,y,z,twist,curvature,bending_strain,bending_stress\n");
+    for (info, rod) in net.rods.iter().zip(&r.rods) {
+        let bend = vertex_bending(net, info);
+        for (k, p) in rod.points.iter().enumerate() {
+            let tw = rod
+                .twist
+                .get(k)
+                .or(rod.twist.last())
+                .copied()
+                .unwrap_or(0.0);
+            let (kappa, strain, stress) = bend[k];
+            let _ = writeln!(
+                s,
+                "{},{k},{:.12e},{:.12e},{:.12e},{:.12e},{:.12e},{:.12e},{:.12e}",
+                csv_field(&rod.name),
+                p[0],
+                p[1],
+                p[2],
+                tw,
+                kappa,
+                strain,
+                stress
+            );
+        }
+    }
+    s
+}
+
+fn csv_field(s: &str) -> String {
+    if s.contains([',', '"', '\n']) {
+        format!("\"{}\"", s.replace('"', "\"\""))
+    } else {
+        s.to_string()
+    }
+}

@@ -1,0 +1,6 @@
+//! Results, exports and file writing.
+pub mod atomic;
+pub mod csv;
+pub mod obj;
+pub mod results;
+pub mod stress;

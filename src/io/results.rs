@@ -1,0 +1,233 @@
+//! Results of a solve, in the shape of the contract's results JSON.
+
+use serde::Serialize;
+
+use crate::math::vec::{norm, sub};
+use crate::network::build::Network;
+use crate::network::model::{Assembly, EnergyParts};
+use crate::scene::types::Target;
+use crate::solver::NewtonReport;
+
+#[derive(Debug, Clone, Serialize)]
+pub struct EnergyJson {
+    pub total: f64,
+    pub stretch: f64,
+    pub bend: f64,
+    pub twist: f64,
+    pub joints: f64,
+    pub external: f64,
+}
+
+impl From<EnergyParts> for EnergyJson {
+    fn from(p: EnergyParts) -> Self {
+        EnergyJson {
+            total: p.total(),
+            stretch: p.stretch,
+            bend: p.bend,
+            twist: p.twist,
+            joints: p.joints,
+            external: p.external,
+        }
+    }
+}
+
+#[derive(Debug, Clone, Serialize)]
+pub struct RodJson {
+    pub name: String,
+    /// Every node after subdivision, m.
+    pub points: Vec<[f64; 3]>,
+    /// Material-frame angle θ of each edge relative to its time-parallel reference frame, rad.
+    pub twist: Vec<f64>,
+    /// Largest extreme-fibre bending stress over the rod's vertices, Pa.
+    pub max_bending_stress: f64,
+    /// Elastic energy stored in the rod's stretching, bending and twisting terms is reported in
+    /// the global `energy` block; this is the rod's length after deformation, m.
+    pub length: f64,
+}
+
+#[derive(Debug, Clone, Serialize)]
+pub struct JointJson {
+    pub name: String,
+    pub position: [f64; 3],
+}
+
+#[derive(Debug, Clone, Serialize)]
+pub struct ReactionJson {
+    pub rod: String,
+    pub vertex: usize,
+    /// Force the support exerts on the structure, N.
+    pub force: [f64; 3],
+    /// Moment the support exerts (clamps), N·m.
+    pub moment: [f64; 3],
+}
+
+#[derive(Debug, Clone, Serialize)]
+pub struct TargetJson {
+    pub shape: String,
+    pub max_abs_radial_deviation: f64,
+    pub rms_radial_deviation: f64,
+    pub apex_height: f64,
+}
+
+#[derive(Debug, Clone, Serialize)]
+pub struct SolverJson {
+    pub factorizations: usize,
+    pub regularized_iterations: usize,
+    pub saddle_escapes: usize,
+    pub stable: bool,
+    pub factor_seconds: f64,
+    pub free_unknowns: usize,
+    pub step_iterations: Vec<usize>,
+    pub message: Option<String>,
+}
+
+#[derive(Debug, Clone, Serialize)]
+pub struct Results {
+    pub converged: bool,
+    pub iterations: usize,
+    pub load_steps: usize,
+    pub residual: f64,
+    pub seconds: f64,
+    pub energy: EnergyJson,
+    pub rods: Vec<RodJson>,
+    pub joints: Vec<JointJson>,
+    pub reactions: Vec<ReactionJson>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub target: Option<TargetJson>,
+    pub solver: SolverJson,
+}
+
+fn node_pos(q: &[f64], n: usize) -> [f64; 3] {
+    [q[3 * n], q[3 * n + 1], q[3 * n + 2]]
+}
+
+impl Results {
+    pub fn collect(net: &Network, report: &NewtonReport, target: Option<&Target>) -> Results {
+        let m = &net.model;
+        let q = &m.state.q;
+        let mut grad = vec![0.0; m.n_free];
+        let mut full = vec![0.0; q.len()];
+        m.assemble(&mut Assembly {
+            grad: &mut grad,
+            full_grad: Some(&mut full),
+            hess: None,
+        });
+        let rods = net
+            .rods
+            .iter()
+            .map(|r| {
+                let points: Vec<[f64; 3]> = r.nodes.iter().map(|&n| node_pos(q, n)).collect();
+                let twist = r.edges.iter().map(|&e| q[3 * net.n_nodes + e]).collect();
+                let length = r
+                    .edges
+                    .iter()
+                    .map(|&e| {
+                        let [a, b] = m.edge_nodes[e];
+                        norm(sub(node_pos(q, b), node_pos(q, a)))
+                    })
+                    .sum();
+                RodJson {
+                    name: r.name.clone(),
+                    points,
+                    twist,
+                    max_bending_stress: crate::io::stress::max_bending_stress(net, r),
+                    length,
+                }
+            })
+            .collect();
+        let joints = net
+            .joints
+            .iter()
+            .map(|j| JointJson {
+                name: j.name.clone(),
+                position: node_pos(q, j.node),
+            })
+            .collect();
+        let reactions = net
+            .supports
+            .iter()
+            .map(|s| {
+                let n = s.node;
+                let force = [full[3 * n], full[3 * n + 1], full[3 * n + 2]];
+                let moment = match s.frame.and_then(|f| m.frame_var(f)) {
+                    Some(v) => [full[v], full[v + 1], full[v + 2]],
+                    None => [0.0; 3],
+                };
+                ReactionJson {
+                    rod: s.rod.clone(),
+                    vertex: s.vertex,
+                    force,
+                    moment,
+                }
+            })
+            .collect();
+        let target = target.map(|t| sphere_metrics(net, t));
+        Results {
+            converged: report.converged,
+            iterations: report.iterations,
+            load_steps: report.load_steps,
+            residual: report.residual,
+            seconds: report.seconds,
+            energy: m.energy_parts().into(),
+            rods,
+            joints,
+            reactions,
+            target,
+            solver: SolverJson {
+                factorizations: report.factorizations,
+                regularized_iterations: report.regularized_iterations,
+                saddle_escapes: report.saddle_escapes,
+                stable: report.stable,
+                factor_seconds: report.factor_seconds,
+                free_unknowns: m.n_free,
+                step_iterations: report.step_iterations.clone(),
+                message: report.message.clone(),
+            },
+        }
+    }
+
+    /// Whether every number is finite (results with NaN are never written).
+    pub fn all_finite(&self) -> bool {
+        let e = &self.energy;
+        [e.total, e.stretch, e.bend, e.twist, e.joints, e.external]
+            .iter()
+            .all(|v| v.is_finite())
+            && self.rods.iter().all(|r| {
+                r.points.iter().flatten().all(|v| v.is_finite())
+                    && r.twist.iter().all(|v| v.is_finite())
+            })
+            && self
+                .reactions
+                .iter()
+                .all(|r| r.force.iter().chain(&r.moment).all(|v| v.is_finite()))
+    }
+}
+
+/// Sphere deviations over the joint positions (all rod nodes when there are no joints),
+/// relative to R; apex height = highest node above the centre over R.
+fn sphere_metrics(net: &Network, t: &Target) -> TargetJson {
+    let Target::Sphere { center, radius } = t;
+    let q = &net.model.state.q;
+    let nodes: Vec<usize> = if net.joints.is_empty() {
+        (0..net.n_nodes).collect()
+    } else {
+        net.joints.iter().map(|j| j.node).collect()
+    };
+    let mut max: f64 = 0.0;
+    let mut sum2 = 0.0;
+    for &n in &nodes {
+        let d = (norm(sub(node_pos(q, n), *center)) - radius) / radius;
+        max = max.max(d.abs());
+        sum2 += d * d;
+    }
+    let apex = (0..net.n_nodes)
+        .map(|n| node_pos(q, n)[2] - center[2])
+        .fold(f64::NEG_INFINITY, f64::max)
+        / radius;
+    TargetJson {
+        shape: "sphere".into(),
+        max_abs_radial_deviation: max,
+        rms_radial_deviation: (sum2 / nodes.len().max(1) as f64).sqrt(),
+        apex_height: apex,
+    }
+}

@@ -1,0 +1,21 @@
+//! rodnet: Discrete Elastic Rods statics for rod networks and elastic gridshells.
+//!
+//! Layout: [`rod`] (sections, frames, transport), [`energy`] (one term per file), [`network`]
+//! (state, DOF map, assembly, builder), [`solver`] (Newton, sparse Cholesky), [`scene`] (RON format
+//! and validation), [`io`] (results, OBJ), [`gridshell`] (Chebyshev nets).
+
+// Numeric kernels index several arrays with one loop variable; iterator chains there hide the
+// mathematics without making it safer.
+#![allow(clippy::needless_range_loop)]
+
+pub mod analytic;
+pub mod cli;
+pub mod energy;
+pub mod gridshell;
+pub mod io;
+pub mod job;
+pub mod math;
+pub mod network;
+pub mod rod;
+pub mod scene;
+pub mod solver;

@@ -1,0 +1,103 @@
+//! The network as a [`NewtonProblem`].
+
+use crate::network::model::{Assembly, Model, VarKind, FIXED};
+use crate::network::state::State;
+use crate::solver::NewtonProblem;
+
+impl NewtonProblem for Model {
+    type Snapshot = State;
+    fn snapshot(&self) -> State {
+        self.state.clone()
+    }
+    fn restore(&mut self, s: &State) {
+        self.state.clone_from(s);
+    }
+    fn extrapolate(&mut self, from: &State, factor: f64) {
+        // Positions only: edge angles are relative to reference frames that differ between the
+        // two iterates, and frame increments are zero after every commit.
+        for (v, &f) in self.free.iter().enumerate() {
+            if f != FIXED && self.kinds[v] == VarKind::Position {
+                self.state.q[v] += factor * (self.state.q[v] - from.q[v]);
+            }
+        }
+        self.commit();
+    }
+    fn residual_floor(&self) -> f64 {
+        Model::residual_floor(self)
+    }
+    fn num_free(&self) -> usize {
+        self.n_free
+    }
+    fn hessian_pattern(&self) -> Vec<(usize, usize)> {
+        Model::hessian_pattern(self)
+    }
+    fn set_hessian_slots(&mut self, slots: &[usize]) {
+        self.set_slots(slots)
+    }
+    fn assemble(&self, grad: &mut [f64], hess: Option<&mut [f64]>) -> f64 {
+        Model::assemble(
+            self,
+            &mut Assembly {
+                grad,
+                full_grad: None,
+                hess,
+            },
+        )
+    }
+    fn energy(&self) -> f64 {
+        Model::energy(self)
+    }
+    fn trial_energy(&mut self, step: &[f64], alpha: f64) -> f64 {
+        Model::trial_energy(self, step, alpha)
+    }
+    fn trial_gradient(&mut self, step: &[f64], alpha: f64, grad: &mut [f64]) -> f64 {
+        Model::trial_gradient(self, step, alpha, grad)
+    }
+    fn step_correction(&mut self, step: &[f64], c: &mut [f64]) -> bool {
+        let mut proj = self
+            .projector
+            .0
+            .take()
+            .unwrap_or_else(|| crate::network::projection::Projector::new(self));
+        let r = proj.correction(self, step, c);
+        self.projector.0 = Some(proj);
+        r
+    }
+    fn max_step(&self, step: &[f64]) -> f64 {
+        Model::max_step(self, step)
+    }
+    fn accept(&mut self, step: &[f64], alpha: f64) {
+        self.displace(step, alpha);
+        self.commit();
+    }
+    fn relative_residual(&self, grad: &[f64]) -> f64 {
+        Model::relative_residual(self, grad)
+    }
+    fn set_continuation(&mut self, lambda: f64) {
+        self.set_load(lambda);
+        // Prescribed variables moved: reference frames must follow before the next assembly.
+        self.commit();
+    }
+    fn perturbation_size(&self, direction: &[f64]) -> f64 {
+        // Largest node displacement 1 % of the length scale, or largest rotation 0.01 rad.
+        let mut dx: f64 = 0.0;
+        let mut da: f64 = 0.0;
+        for (v, &f) in self.free.iter().enumerate() {
+            if f == FIXED {
+                continue;
+            }
+            let d = direction[f as usize].abs();
+            match self.kinds[v] {
+                VarKind::Position => dx = dx.max(d),
+                VarKind::Angle => da = da.max(d),
+            }
+        }
+        let sx = if dx > 0.0 {
+            1e-2 * self.length_scale / dx
+        } else {
+            f64::INFINITY
+        };
+        let sa = if da > 0.0 { 1e-2 / da } else { f64::INFINITY };
+        sx.min(sa)
+    }
+}

@@ -1,0 +1,3 @@
+//! One discrete elastic rod: sections, frames and transport.
+pub mod frames;
+pub mod section;

@@ -1,0 +1,230 @@
+//! Maps a field of a parsed scene back to its line and column in the RON text, so that semantic
+//! errors (unknown material, zero-length segment, …) point at the offending line like syntax
+//! errors do. A tiny tokenizer skips strings and comments and tracks bracket depth.
+
+#[derive(Debug, Clone, PartialEq)]
+enum Tok {
+    Ident(String),
+    Str(String),
+    Open,
+    Close,
+    Comma,
+    Colon,
+    Other,
+}
+
+fn tokenize(src: &str) -> Vec<(Tok, usize, usize)> {
+    let mut out = Vec::new();
+    let chars: Vec<char> = src.chars().collect();
+    let (mut i, mut line, mut col) = (0, 1, 1);
+    let adv = |i: &mut usize, line: &mut usize, col: &mut usize, c: char| {
+        *i += 1;
+        if c == '\n' {
+            *line += 1;
+            *col = 1;
+        } else {
+            *col += 1;
+        }
+    };
+    while i < chars.len() {
+        let c = chars[i];
+        let (l0, c0) = (line, col);
+        if c == '/' && chars.get(i + 1) == Some(&'/') {
+            while i < chars.len() && chars[i] != '\n' {
+                {
+                    let ch = chars[i];
+                    adv(&mut i, &mut line, &mut col, ch);
+                }
+            }
+        } else if c == '/' && chars.get(i + 1) == Some(&'*') {
+            while i < chars.len() && !(chars[i] == '*' && chars.get(i + 1) == Some(&'/')) {
+                {
+                    let ch = chars[i];
+                    adv(&mut i, &mut line, &mut col, ch);
+                }
+            }
+            for _ in 0..2 {
+                if i < chars.len() {
+                    {
+                        let ch = chars[i];
+                        adv(&mut i, &mut line, &mut col, ch);
+                    }
+                }
+            }
+        } else if c == '"' {
+            let mut s = String::new();
+            adv(&mut i, &mut line, &mut col, c);
+            while i < chars.len() && chars[i] != '"' {
+                if chars[i] == '\\' && i + 1 < chars.len() {
+                    {
+                        let ch = chars[i];
+                        adv(&mut i, &mut line, &mut col, ch);
+                    }
+                }
+                s.push(chars[i]);
+                {
+                    let ch = chars[i];
+                    adv(&mut i, &mut line, &mut col, ch);
+                }
+            }
+            if i < chars.len() {
+                adv(&mut i, &mut line, &mut col, '"');
+            }
+            out.push((Tok::Str(s), l0, c0));
+        } else if c.is_alphabetic() || c == '_' {
+            let mut s = String::new();
+            while i < chars.len() && (chars[i].is_alphanumeric() || chars[i] == '_') {
+                s.push(chars[i]);
+                {
+                    let ch = chars[i];
+                    adv(&mut i, &mut line, &mut col, ch);
+                }
+            }
+            out.push((Tok::Ident(s), l0, c0));
+        } else {
+            let t = match c {
+                '(' | '[' | '{' => Some(Tok::Open),
+                ')' | ']' | '}' => Some(Tok::Close),
+                ',' => Some(Tok::Comma),
+                ':' => Some(Tok::Colon),
+                c if c.is_whitespace() => None,
+                _ => Some(Tok::Other),
+            };
+            if let Some(t) = t {
+                out.push((t, l0, c0));
+            }
+            adv(&mut i, &mut line, &mut col, c);
+        }
+    }
+    out
+}
+
+/// Which element of a top-level list (by index) or map (by key).
+#[derive(Debug, Clone, PartialEq)]
+pub enum Item {
+    Index(usize),
+    Key(String),
+    None,
+}
+
+/// Line and column (1-based) of `field` inside element `item` of the top-level `section`,
+/// falling back to the element, then to the section.
+pub fn locate(src: &str, section: &str, item: &Item, field: &str) -> Option<(usize, usize)> {
+    let toks = tokenize(src);
+    let mut depth = 0usize;
+    let mut k = 0;
+    // Find `section:` directly inside the outer `Scene(`.
+    let mut found = None;
+    while k + 1 < toks.len() {
+        match &toks[k].0 {
+            Tok::Open => depth += 1,
+            Tok::Close => depth = depth.saturating_sub(1),
+            Tok::Ident(s) if depth == 1 && s == section && toks[k + 1].0 == Tok::Colon => {
+                found = Some(k);
+                break;
+            }
+            _ => {}
+        }
+        k += 1;
+    }
+    let start = found?;
+    let section_pos = (toks[start].1, toks[start].2);
+    if *item == Item::None {
+        return Some(field_in(&toks, start + 2, field).unwrap_or(section_pos));
+    }
+    // The section's value must be a bracketed list or map.
+    let mut k = start + 2;
+    if k >= toks.len() || toks[k].0 != Tok::Open {
+        return Some(section_pos);
+    }
+    k += 1;
+    let mut index = 0;
+    let mut d = 0usize;
+    let mut elem_start = k;
+    while k < toks.len() {
+        let at_elem_start = d == 0 && k == elem_start;
+        if at_elem_start {
+            let hit = match item {
+                Item::Index(i) => *i == index,
+                Item::Key(key) => toks[k].0 == Tok::Str(key.clone()),
+                Item::None => false,
+            };
+            if hit {
+                let pos = (toks[k].1, toks[k].2);
+                return Some(field_in(&toks, k, field).unwrap_or(pos));
+            }
+        }
+        match toks[k].0 {
+            Tok::Open => d += 1,
+            Tok::Close => {
+                if d == 0 {
+                    break;
+                }
+                d -= 1;
+            }
+            Tok::Comma if d == 0 => {
+                index += 1;
+                elem_start = k + 1;
+            }
+            _ => {}
+        }
+        k += 1;
+    }
+    Some(section_pos)
+}
+
+/// Position of `field:` one level inside the element starting at token `k`.
+fn field_in(toks: &[(Tok, usize, usize)], mut k: usize, field: &str) -> Option<(usize, usize)> {
+    if field.is_empty() {
+        return None;
+    }
+    let mut d = 0usize;
+    while k + 1 < toks.len() {
+        match &toks[k].0 {
+            Tok::Open => d += 1,
+            Tok::Close => {
+                if d <= 1 {
+                    return None;
+                }
+                d -= 1;
+            }
+            Tok::Comma if d == 0 => return None,
+            Tok::Ident(s) if d == 1 && s == field && toks[k + 1].0 == Tok::Colon => {
+                return Some((toks[k].1, toks[k].2));
+            }
+            _ => {}
+        }
+        k += 1;
+    }
+    None
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn finds_fields_in_lists_and_maps() {
+        let src = r#"Scene(
+    materials: { "steel": Material(young_modulus: 1.0, section: Circle(radius: 0.1)) },
+    rods: [
+        Rod(name: "a", material: "x", points: [(0,0,0), (1,0,0)]), // "material: here"
+        Rod(name: "b",
+            material: "steel", points: []),
+    ],
+)"#;
+        assert_eq!(
+            locate(src, "rods", &Item::Index(1), "points"),
+            Some((6, 32))
+        );
+        assert_eq!(
+            locate(src, "rods", &Item::Index(0), "material"),
+            Some((4, 24))
+        );
+        assert_eq!(
+            locate(src, "materials", &Item::Key("steel".into()), "section"),
+            Some((2, 56))
+        );
+        assert_eq!(locate(src, "rods", &Item::Index(7), "x"), Some((3, 5)));
+    }
+}

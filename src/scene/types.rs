@@ -1,0 +1,205 @@
+//! The RON scene format (see `docs/scene-format.md`). Names follow `../shared/contract.md`
+//! exactly; every type rejects unknown fields so that typos are reported, not ignored.
+
+use std::collections::BTreeMap;
+
+use serde::{Deserialize, Serialize};
+
+pub use crate::rod::section::Section;
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Scene {
+    #[serde(default)]
+    pub materials: BTreeMap<String, Material>,
+    #[serde(default)]
+    pub rods: Vec<Rod>,
+    #[serde(default)]
+    pub joints: Vec<Joint>,
+    #[serde(default)]
+    pub supports: Vec<Support>,
+    #[serde(default)]
+    pub loads: Vec<Load>,
+    #[serde(default)]
+    pub obstacles: Vec<Obstacle>,
+    #[serde(default)]
+    pub target: Option<Target>,
+    #[serde(default)]
+    pub solver: Solver,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Material {
+    /// Pa.
+    pub young_modulus: f64,
+    /// Dimensionless, in (−1, 0.5]; exactly one of `poisson_ratio` and `shear_modulus`.
+    #[serde(default)]
+    pub poisson_ratio: Option<f64>,
+    /// Pa.
+    #[serde(default)]
+    pub shear_modulus: Option<f64>,
+    /// kg/m³.
+    #[serde(default)]
+    pub density: f64,
+    pub section: Section,
+}
+
+impl Material {
+    pub fn shear(&self) -> f64 {
+        match (self.shear_modulus, self.poisson_ratio) {
+            (Some(g), _) => g,
+            (None, Some(nu)) => self.young_modulus / (2.0 * (1.0 + nu)),
+            (None, None) => self.young_modulus / 3.0,
+        }
+    }
+}
+
+fn one() -> usize {
+    1
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Rod {
+    pub name: String,
+    pub material: String,
+    /// Rest centreline, m.
+    pub points: Vec<[f64; 3]>,
+    #[serde(default = "one")]
+    pub subdivide: usize,
+    #[serde(default)]
+    pub closed: bool,
+    /// First material axis at the first edge (projected onto the plane normal to it).
+    #[serde(default)]
+    pub normal: Option<[f64; 3]>,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Joint {
+    pub name: String,
+    pub at: Vec<(String, usize)>,
+    pub kind: JointKind,
+    /// Hinge axis (default: cross product of the first two incident tangents).
+    #[serde(default)]
+    pub normal: Option<[f64; 3]>,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub enum JointKind {
+    Rigid,
+    Hinge,
+    Ball,
+    Elastic(ElasticJoint),
+}
+
+/// Elastic joint: rotational springs between each incident rod's frame and the joint's frame,
+/// about the rod's bending axes, its twist axis, and the joint normal (scissor).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct ElasticJoint {
+    /// N·m/rad.
+    #[serde(default)]
+    pub bending: Option<f64>,
+    /// N·m/rad.
+    #[serde(default)]
+    pub twist: Option<f64>,
+    /// N·m/rad.
+    #[serde(default)]
+    pub scissor: Option<f64>,
+    /// Derive the three stiffnesses from a joint cylinder instead.
+    #[serde(default)]
+    pub cylinder: Option<JointCylinder>,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct JointCylinder {
+    pub young_modulus: f64,
+    #[serde(default)]
+    pub poisson_ratio: Option<f64>,
+    pub diameter: f64,
+    pub height: f64,
+}
+
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+pub enum SupportKind {
+    Pin,
+    Clamp,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Support {
+    pub rod: String,
+    pub vertex: usize,
+    pub kind: SupportKind,
+    #[serde(default)]
+    pub move_to: Option<[f64; 3]>,
+    /// Clamps only: rotate the clamp's frame by this rotation vector (axis × angle, rad) over
+    /// the load steps.
+    #[serde(default)]
+    pub rotate_by: Option<[f64; 3]>,
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub enum Load {
+    /// N.
+    Force {
+        rod: String,
+        vertex: usize,
+        force: [f64; 3],
+    },
+    /// m/s².
+    Gravity { g: [f64; 3] },
+    /// N·m.
+    Torque {
+        rod: String,
+        vertex: usize,
+        torque: [f64; 3],
+    },
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub enum Obstacle {
+    Plane { point: [f64; 3], normal: [f64; 3] },
+    Sphere { center: [f64; 3], radius: f64 },
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub enum Target {
+    Sphere { center: [f64; 3], radius: f64 },
+}
+
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Solver {
+    #[serde(default = "default_tolerance")]
+    pub tolerance: f64,
+    #[serde(default = "default_max_iterations")]
+    pub max_iterations: usize,
+    #[serde(default = "one")]
+    pub load_steps: usize,
+}
+
+fn default_tolerance() -> f64 {
+    1e-9
+}
+fn default_max_iterations() -> usize {
+    200
+}
+
+impl Default for Solver {
+    fn default() -> Self {
+        Solver {
+            tolerance: default_tolerance(),
+            max_iterations: default_max_iterations(),
+            load_steps: 1,
+        }
+    }
+}

@@ -1,0 +1,376 @@
+//! Semantic checks of a parsed scene. Everything the builder assumes is checked here, so that a
+//! bad scene gives one clear message naming its field instead of a panic or a NaN.
+
+use std::collections::{HashMap, HashSet};
+
+use super::types::*;
+use super::FieldError;
+
+/// Largest number of nodes a scene may create (about 1 GB of solver memory per million nodes).
+pub const MAX_NODES: usize = 2_000_000;
+/// Largest number of load steps.
+pub const MAX_LOAD_STEPS: usize = 100_000;
+
+fn finite3(v: &[f64; 3]) -> bool {
+    v.iter().all(|x| x.is_finite())
+}
+
+fn positive(x: f64) -> bool {
+    x.is_finite() && x > 0.0
+}
+
+fn dist(a: &[f64; 3], b: &[f64; 3]) -> f64 {
+    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
+}
+
+pub fn validate(s: &Scene) -> Result<(), FieldError> {
+    for (name, m) in &s.materials {
+        let err = |f: &str, msg: String| Err(FieldError::keyed("materials", name, f, msg));
+        if !positive(m.young_modulus) {
+            return err(
+                "young_modulus",
+                format!("must be positive and finite, got {}", m.young_modulus),
+            );
+        }
+        match (m.poisson_ratio, m.shear_modulus) {
+            (Some(_), Some(_)) => {
+                return err(
+                    "shear_modulus",
+                    "give exactly one of `poisson_ratio` and `shear_modulus`, not both".into(),
+                )
+            }
+            (None, None) => {
+                return err(
+                    "young_modulus",
+                    "give exactly one of `poisson_ratio` and `shear_modulus`".into(),
+                )
+            }
+            (Some(nu), None) => {
+                if !(nu.is_finite() && nu > -1.0 && nu <= 0.5) {
+                    return err("poisson_ratio", format!("must lie in (-1, 0.5], got {nu}"));
+                }
+            }
+            (None, Some(g)) => {
+                if !positive(g) {
+                    return err(
+                        "shear_modulus",
+                        format!("must be positive and finite, got {g}"),
+                    );
+                }
+            }
+        }
+        if !(m.density.is_finite() && m.density >= 0.0) {
+            return err(
+                "density",
+                format!("must be non-negative and finite, got {}", m.density),
+            );
+        }
+        let ok = match m.section {
+            Section::Circle { radius } => positive(radius),
+            Section::Ellipse { a, b } => positive(a) && positive(b),
+            Section::Rectangle { width, height } => positive(width) && positive(height),
+        };
+        if !ok {
+            return err(
+                "section",
+                format!(
+                    "dimensions must be positive and finite, got {:?}",
+                    m.section
+                ),
+            );
+        }
+    }
+
+    let mut rods: HashMap<&str, &Rod> = HashMap::new();
+    let mut total_nodes = 0usize;
+    for (i, r) in s.rods.iter().enumerate() {
+        let err = |f: &str, msg: String| Err(FieldError::new("rods", i, f, msg));
+        if r.name.is_empty() {
+            return err("name", "must not be empty".into());
+        }
+        if rods.insert(r.name.as_str(), r).is_some() {
+            return err("name", format!("duplicate rod name \"{}\"", r.name));
+        }
+        if !s.materials.contains_key(&r.material) {
+            let known: Vec<&String> = s.materials.keys().collect();
+            return err(
+                "material",
+                format!("unknown material \"{}\" (defined: {known:?})", r.material),
+            );
+        }
+        let min_points = if r.closed { 3 } else { 2 };
+        if r.points.len() < min_points {
+            return err(
+                "points",
+                format!("needs at least {min_points} points, got {}", r.points.len()),
+            );
+        }
+        if let Some(k) = r.points.iter().position(|p| !finite3(p)) {
+            return err(
+                "points",
+                format!("point {k} is not finite: {:?}", r.points[k]),
+            );
+        }
+        let m = r.points.len();
+        let segs = if r.closed { m } else { m - 1 };
+        let mut length = 0.0;
+        for k in 0..segs {
+            length += dist(&r.points[k], &r.points[(k + 1) % m]);
+        }
+        for k in 0..segs {
+            let l = dist(&r.points[k], &r.points[(k + 1) % m]);
+            if l <= 1e-12 * length {
+                return err(
+                    "points",
+                    format!(
+                        "points {k} and {} coincide (zero-length segment)",
+                        (k + 1) % m
+                    ),
+                );
+            }
+        }
+        let range = if r.closed { 0..m } else { 1..m - 1 };
+        for k in range {
+            let (a, b, c) = (
+                &r.points[(k + m - 1) % m],
+                &r.points[k],
+                &r.points[(k + 1) % m],
+            );
+            let e0 = [b[0] - a[0], b[1] - a[1], b[2] - a[2]];
+            let e1 = [c[0] - b[0], c[1] - b[1], c[2] - b[2]];
+            let cosang =
+                (e0[0] * e1[0] + e0[1] * e1[1] + e0[2] * e1[2]) / (dist(a, b) * dist(b, c));
+            if cosang < -0.99985 {
+                return err("points", format!(
+                    "the rod folds back on itself at point {k} (turning angle above 179°); split it into two rods joined there"
+                ));
+            }
+        }
+        if r.subdivide == 0 {
+            return err("subdivide", "must be at least 1".into());
+        }
+        let nodes = segs.saturating_mul(r.subdivide).saturating_add(1);
+        total_nodes = total_nodes.saturating_add(nodes);
+        if total_nodes > MAX_NODES {
+            return err("subdivide", format!(
+                "the scene would have more than {MAX_NODES} nodes; reduce `subdivide` (limit in docs/scene-format.md)"
+            ));
+        }
+        if let Some(n) = r.normal {
+            let t = [
+                r.points[1][0] - r.points[0][0],
+                r.points[1][1] - r.points[0][1],
+                r.points[1][2] - r.points[0][2],
+            ];
+            let cr = [
+                t[1] * n[2] - t[2] * n[1],
+                t[2] * n[0] - t[0] * n[2],
+                t[0] * n[1] - t[1] * n[0],
+            ];
+            let nn = (n[0] * n[0] + n[1] * n[1] + n[2] * n[2]).sqrt();
+            if !finite3(&n)
+                || nn == 0.0
+                || dist(&cr, &[0.0; 3]) <= 1e-8 * nn * dist(&r.points[1], &r.points[0])
+            {
+                return err(
+                    "normal",
+                    "must be finite and not parallel to the first edge".into(),
+                );
+            }
+        }
+    }
+
+    let vertex_ok = |rod: &str, v: usize| -> Result<(), String> {
+        match rods.get(rod) {
+            None => Err(format!("unknown rod \"{rod}\"")),
+            Some(r) if v >= r.points.len() => Err(format!(
+                "vertex {v} is out of range: rod \"{rod}\" has {} input points (vertices 0..{})",
+                r.points.len(),
+                r.points.len() - 1
+            )),
+            Some(_) => Ok(()),
+        }
+    };
+
+    let mut joint_names = HashSet::new();
+    let mut in_joint: HashMap<(&str, usize), usize> = HashMap::new();
+    for (i, j) in s.joints.iter().enumerate() {
+        let err = |f: &str, msg: String| Err(FieldError::new("joints", i, f, msg));
+        if !joint_names.insert(j.name.as_str()) {
+            return err("name", format!("duplicate joint name \"{}\"", j.name));
+        }
+        if j.at.is_empty() {
+            return err("at", "must list at least one (rod, vertex) pair".into());
+        }
+        for (rod, v) in &j.at {
+            if let Err(m) = vertex_ok(rod, *v) {
+                return err("at", m);
+            }
+            if let Some(other) = in_joint.insert((rod.as_str(), *v), i) {
+                return err(
+                    "at",
+                    format!(
+                        "vertex {v} of rod \"{rod}\" is already in joint \"{}\"",
+                        s.joints[other].name
+                    ),
+                );
+            }
+        }
+        if let Some(n) = j.normal {
+            if !finite3(&n) || n == [0.0; 3] {
+                return err("normal", "must be finite and non-zero".into());
+            }
+        }
+        if let JointKind::Elastic(e) = &j.kind {
+            for (f, v) in [
+                ("bending", e.bending),
+                ("twist", e.twist),
+                ("scissor", e.scissor),
+            ] {
+                if let Some(v) = v {
+                    if !(v.is_finite() && v >= 0.0) {
+                        return err(
+                            "kind",
+                            format!("Elastic `{f}` must be non-negative and finite, got {v}"),
+                        );
+                    }
+                }
+            }
+            if let Some(c) = &e.cylinder {
+                if !(positive(c.young_modulus) && positive(c.diameter) && positive(c.height)) {
+                    return err(
+                        "kind",
+                        "Elastic `cylinder` needs positive young_modulus, diameter and height"
+                            .into(),
+                    );
+                }
+            }
+        }
+    }
+
+    let mut moved: HashMap<(&str, usize), [f64; 3]> = HashMap::new();
+    for (i, sp) in s.supports.iter().enumerate() {
+        let err = |f: &str, msg: String| Err(FieldError::new("supports", i, f, msg));
+        if let Err(m) = vertex_ok(&sp.rod, sp.vertex) {
+            return err(
+                if m.starts_with("unknown") {
+                    "rod"
+                } else {
+                    "vertex"
+                },
+                m,
+            );
+        }
+        if let Some(r) = sp.rotate_by {
+            if !finite3(&r) {
+                return err("rotate_by", format!("must be finite, got {r:?}"));
+            }
+            if sp.kind != SupportKind::Clamp {
+                return err(
+                    "rotate_by",
+                    "only a Clamp can be rotated (a Pin leaves rotations free)".into(),
+                );
+            }
+        }
+        if let Some(t) = sp.move_to {
+            if !finite3(&t) {
+                return err("move_to", format!("must be finite, got {t:?}"));
+            }
+            if let Some(prev) = moved.insert((sp.rod.as_str(), sp.vertex), t) {
+                if prev != t {
+                    return err("move_to", format!(
+                        "contradicts another support of vertex {} of rod \"{}\" that moves it to {prev:?}",
+                        sp.vertex, sp.rod
+                    ));
+                }
+            }
+        }
+    }
+
+    for (i, l) in s.loads.iter().enumerate() {
+        let err = |f: &str, msg: String| Err(FieldError::new("loads", i, f, msg));
+        match l {
+            Load::Force { rod, vertex, force } => {
+                if let Err(m) = vertex_ok(rod, *vertex) {
+                    return err(
+                        if m.starts_with("unknown") {
+                            "rod"
+                        } else {
+                            "vertex"
+                        },
+                        m,
+                    );
+                }
+                if !finite3(force) {
+                    return err("force", format!("must be finite, got {force:?}"));
+                }
+            }
+            Load::Torque {
+                rod,
+                vertex,
+                torque,
+            } => {
+                if let Err(m) = vertex_ok(rod, *vertex) {
+                    return err(
+                        if m.starts_with("unknown") {
+                            "rod"
+                        } else {
+                            "vertex"
+                        },
+                        m,
+                    );
+                }
+                if !finite3(torque) {
+                    return err("torque", format!("must be finite, got {torque:?}"));
+                }
+            }
+            Load::Gravity { g } => {
+                if !finite3(g) {
+                    return err("g", format!("must be finite, got {g:?}"));
+                }
+            }
+        }
+    }
+
+    if !s.obstacles.is_empty() {
+        return Err(FieldError::global(
+            "obstacles",
+            "",
+            "contact with obstacles is not implemented yet in this version of rodnet".into(),
+        ));
+    }
+
+    if let Some(Target::Sphere { center, radius }) = &s.target {
+        if !finite3(center) || !positive(*radius) {
+            return Err(FieldError::global(
+                "target",
+                "",
+                "Sphere needs a finite center and a positive radius".into(),
+            ));
+        }
+    }
+
+    let sv = &s.solver;
+    if !positive(sv.tolerance) {
+        return Err(FieldError::global(
+            "solver",
+            "tolerance",
+            format!("must be positive, got {}", sv.tolerance),
+        ));
+    }
+    if sv.max_iterations == 0 {
+        return Err(FieldError::global(
+            "solver",
+            "max_iterations",
+            "must be at least 1".into(),
+        ));
+    }
+    if sv.load_steps == 0 || sv.load_steps > MAX_LOAD_STEPS {
+        return Err(FieldError::global(
+            "solver",
+            "load_steps",
+            format!("must be in 1..={MAX_LOAD_STEPS}"),
+        ));
+    }
+    Ok(())
+}

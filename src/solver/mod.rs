@@ -1,0 +1,9 @@
+//! Newton's method on the total energy, its linear algebra, and its settings.
+pub mod linalg;
+pub mod newton;
+pub mod problem;
+pub mod settings;
+
+pub use newton::solve;
+pub use problem::NewtonProblem;
+pub use settings::{NewtonReport, NewtonSettings};

@@ -1,0 +1,359 @@
+//! Newton's method on the total energy with load stepping.
+//!
+//! Each iteration factors the exact Hessian with a sparse Cholesky (symbolic analysis reused). If
+//! the Hessian is not positive definite, a diagonal shift τ·I is added, grown ×10 from a fraction
+//! of the last successful shift until the factorization succeeds (modified Newton: the step stays
+//! a descent direction). A backtracking line search on the energy (Armijo) follows, capped by the
+//! problem's admissible step. At a stationary point whose Hessian is not positive definite, the
+//! direction of most negative curvature (inverse iteration with the shifted factor) is followed
+//! downhill, so a perfectly straight compressed rod buckles instead of stalling at the saddle.
+
+use std::time::Instant;
+
+use super::linalg::SparseCholesky;
+use super::problem::NewtonProblem;
+use super::settings::{NewtonReport, NewtonSettings};
+
+/// Newton iterations a continuation sub-step may take before it is retried with a smaller
+/// increment (unless the increment is already minimal).
+const ATTEMPT_CAP: usize = 8;
+/// Smallest continuation increment, as a fraction of the whole load path.
+const MIN_INCREMENT: f64 = 1e-5;
+
+/// What the search for negative curvature at a stationary point found.
+enum Saddle {
+    /// Only zero-energy modes (rigid rotations, free spin): a minimum up to those modes.
+    ZeroModesOnly,
+    Escaped,
+    /// Negative curvature, but no energy decrease along it within round-off.
+    NoDecrease,
+}
+
+enum Outcome {
+    Converged(usize),
+    Failed(String),
+}
+
+pub fn solve<P: NewtonProblem>(p: &mut P, s: &NewtonSettings) -> NewtonReport {
+    let t0 = Instant::now();
+    let n = p.num_free();
+    let pairs = p.hessian_pattern();
+    let (chol, slots) = SparseCholesky::new(n, &pairs);
+    p.set_hessian_slots(&slots);
+    let steps = s.load_steps.max(1);
+    let mut st = Newton {
+        chol,
+        g: vec![0.0; n],
+        d: vec![0.0; n],
+        c: vec![0.0; n],
+        trial: vec![0.0; n],
+        shift_memory: 0.0,
+        report: NewtonReport {
+            load_steps: steps,
+            ..Default::default()
+        },
+    };
+    // Adaptive continuation: each user load step is reached through sub-steps whose increment
+    // halves on failure and doubles after easy convergence; a secant predictor from the last
+    // two converged states starts each sub-step.
+    let mut lam = 0.0;
+    let mut inc = 1.0 / steps as f64;
+    let mut prev: Option<(f64, P::Snapshot)> = None;
+    'steps: for k in 1..=steps {
+        let target = k as f64 / steps as f64;
+        let its_before = st.report.iterations;
+        while lam < target {
+            let mut next = (lam + inc).min(target);
+            if target - next < 0.25 * inc {
+                next = target;
+            }
+            let saved = p.snapshot();
+            if let Some((lp, snap)) = &prev {
+                if lam > *lp {
+                    p.extrapolate(snap, ((next - lam) / (lam - lp)).min(2.0));
+                }
+            }
+            p.set_continuation(next);
+            let minimal = inc <= MIN_INCREMENT * 1.0001;
+            // `max_iterations` bounds the Newton iterations of a whole load step, sub-steps
+            // and retries included.
+            let remaining = s
+                .max_iterations
+                .saturating_sub(st.report.iterations - its_before);
+            let last_chance = minimal || remaining <= ATTEMPT_CAP;
+            let cap = if minimal {
+                remaining
+            } else {
+                ATTEMPT_CAP.min(remaining)
+            };
+            match st.iterate(p, s, cap, (k, steps)) {
+                Outcome::Converged(its) => {
+                    st.report.substeps += 1;
+                    prev = Some((lam, saved));
+                    lam = next;
+                    if its <= 5 {
+                        inc = (2.0 * inc).min(1.0 / steps as f64);
+                    }
+                }
+                Outcome::Failed(msg) => {
+                    if last_chance {
+                        st.fail(msg);
+                        st.report
+                            .step_iterations
+                            .push(st.report.iterations - its_before);
+                        break 'steps;
+                    }
+                    st.report.retries += 1;
+                    p.restore(&saved);
+                    inc = (0.25 * inc).max(MIN_INCREMENT);
+                }
+            }
+        }
+        st.report
+            .step_iterations
+            .push(st.report.iterations - its_before);
+        if k == steps {
+            st.report.converged = st.report.message.is_none();
+        }
+    }
+    st.report.seconds = t0.elapsed().as_secs_f64();
+    st.report
+}
+
+struct Newton {
+    chol: SparseCholesky,
+    g: Vec<f64>,
+    d: Vec<f64>,
+    c: Vec<f64>,
+    trial: Vec<f64>,
+    shift_memory: f64,
+    report: NewtonReport,
+}
+
+impl Newton {
+    /// Newton iterations at the current continuation parameter until convergence, failure, or
+    /// `cap` iterations.
+    fn iterate<P: NewtonProblem>(
+        &mut self,
+        p: &mut P,
+        s: &NewtonSettings,
+        cap: usize,
+        (step, steps): (usize, usize),
+    ) -> Outcome {
+        let n = self.g.len();
+        let mut it = 0;
+        let mut escapes = 0;
+        let mut damped = 0;
+        loop {
+            let e0 = p.assemble(&mut self.g, Some(&mut self.chol.values));
+            let res = p.relative_residual(&self.g);
+            self.report.residual = res;
+            self.report.energy = e0;
+            if !e0.is_finite() || !res.is_finite() {
+                return Outcome::Failed(format!(
+                    "non-finite energy or residual at load step {step}/{steps}, iteration {it}"
+                ));
+            }
+            if let Some(cb) = s.progress {
+                cb(step, self.report.iterations, res, e0);
+            }
+            let floor = p.residual_floor();
+            self.report.residual_floor = floor;
+            if res < s.tolerance.max(floor) {
+                let Some(shift) = self.factor_regularized() else {
+                    return Outcome::Failed(format!(
+                        "Hessian could not be regularized at load step {step}/{steps} (residual {res:.3e})"
+                    ));
+                };
+                if shift == 0.0 {
+                    self.report.stable = true;
+                    return Outcome::Converged(it);
+                }
+                match self.escape_saddle(p, e0) {
+                    Saddle::ZeroModesOnly => {
+                        self.report.stable = true;
+                        return Outcome::Converged(it);
+                    }
+                    Saddle::Escaped if escapes < 8 => {
+                        escapes += 1;
+                        self.report.saddle_escapes += 1;
+                        continue;
+                    }
+                    _ => {
+                        self.report.stable = false;
+                        return Outcome::Converged(it);
+                    }
+                }
+            }
+            if it >= cap {
+                return Outcome::Failed(format!(
+                    "no convergence in {it} Newton iterations at load step {step}/{steps}: \
+                     relative residual {res:.3e} > tolerance {:.1e}",
+                    s.tolerance
+                ));
+            }
+            let Some(shift) = self.factor_regularized() else {
+                return Outcome::Failed(format!(
+                    "Hessian could not be regularized at load step {step}/{steps}, iteration {it} \
+                     (residual {res:.3e})"
+                ));
+            };
+            if shift > 0.0 {
+                self.report.regularized_iterations += 1;
+            }
+            for i in 0..n {
+                self.d[i] = -self.g[i];
+            }
+            let ts = Instant::now();
+            self.chol.solve(&mut self.d);
+            self.report.factor_seconds += ts.elapsed().as_secs_f64();
+            let slope: f64 = self.g.iter().zip(&self.d).map(|(a, b)| a * b).sum();
+            let corrected = p.step_correction(&self.d, &mut self.c);
+            match line_search(
+                p,
+                &self.d,
+                corrected.then_some(&self.c[..]),
+                e0,
+                slope,
+                &mut self.trial,
+            ) {
+                Some(alpha) => {
+                    p.accept(&self.trial, 1.0);
+                    damped = if alpha < 0.5 { damped + 1 } else { 0 };
+                }
+                None => {
+                    return Outcome::Failed(format!(
+                        "line search failed at load step {step}/{steps}, iteration {it} \
+                         (relative residual {res:.3e})"
+                    ))
+                }
+            }
+            it += 1;
+            self.report.iterations += 1;
+            // Repeatedly damped steps far from the solution: a smaller increment is cheaper.
+            if damped >= 4 && cap == ATTEMPT_CAP {
+                return Outcome::Failed(format!(
+                    "damped Newton steps at load step {step}/{steps} (residual {res:.3e})"
+                ));
+            }
+        }
+    }
+
+    fn fail(&mut self, msg: String) {
+        self.report.converged = false;
+        self.report.message = Some(msg);
+    }
+
+    /// Factors H + τI with the smallest τ of the sequence 0, τ₀, 10τ₀, … that succeeds.
+    fn factor_regularized(&mut self) -> Option<f64> {
+        let ts = Instant::now();
+        let r = self.factor_regularized_inner();
+        self.report.factor_seconds += ts.elapsed().as_secs_f64();
+        r
+    }
+
+    fn factor_regularized_inner(&mut self) -> Option<f64> {
+        self.report.factorizations += 1;
+        if self.chol.factor(0.0).is_ok() {
+            self.shift_memory *= 0.1;
+            return Some(0.0);
+        }
+        let scale = self.chol.diagonal_scale().max(f64::MIN_POSITIVE);
+        let mut tau = (1e-10 * scale).max(0.1 * self.shift_memory);
+        while tau < 1e12 * scale {
+            self.report.factorizations += 1;
+            if self.chol.factor(tau).is_ok() {
+                self.shift_memory = tau;
+                return Some(tau);
+            }
+            tau *= 10.0;
+        }
+        None
+    }
+
+    /// With H + τI factored, finds the most negative curvature direction of H by inverse
+    /// iteration and moves downhill along it.
+    fn escape_saddle<P: NewtonProblem>(&mut self, p: &mut P, e0: f64) -> Saddle {
+        let n = self.g.len();
+        if n == 0 {
+            return Saddle::ZeroModesOnly;
+        }
+        // Deterministic, generic start vector.
+        let mut v: Vec<f64> = (0..n)
+            .map(|i| 1.0 + 0.5 * ((i as f64) * 0.7).sin())
+            .collect();
+        let mut hv = vec![0.0; n];
+        let mut lambda = 0.0;
+        for _ in 0..50 {
+            let nv = norm(&v);
+            v.iter_mut().for_each(|x| *x /= nv);
+            self.chol.multiply(&v, &mut hv);
+            let new_lambda: f64 = v.iter().zip(&hv).map(|(a, b)| a * b).sum();
+            let done = (new_lambda - lambda).abs() <= 1e-6 * new_lambda.abs();
+            lambda = new_lambda;
+            if done {
+                break;
+            }
+            self.chol.solve(&mut v);
+        }
+        let nv = norm(&v);
+        v.iter_mut().for_each(|x| *x /= nv);
+        let scale = self.chol.diagonal_scale();
+        if lambda >= -1e-12 * scale {
+            return Saddle::ZeroModesOnly;
+        }
+        // Deterministic sign: largest component positive.
+        let imax = (0..n)
+            .max_by(|&a, &b| v[a].abs().total_cmp(&v[b].abs()))
+            .unwrap();
+        if v[imax] < 0.0 {
+            v.iter_mut().for_each(|x| *x = -*x);
+        }
+        let size = p.perturbation_size(&v);
+        v.iter_mut().for_each(|x| *x *= size);
+        let mut alpha = p.max_step(&v);
+        for _ in 0..30 {
+            let e = p.trial_energy(&v, alpha);
+            if e.is_finite() && e < e0 - 1e-12 * e0.abs() {
+                p.accept(&v, alpha);
+                return Saddle::Escaped;
+            }
+            alpha *= 0.5;
+        }
+        Saddle::NoDecrease
+    }
+}
+
+fn norm(v: &[f64]) -> f64 {
+    v.iter().map(|x| x * x).sum::<f64>().sqrt()
+}
+
+/// Backtracking Armijo search along x + αd (+ α²c when a correction is given), from the
+/// problem's largest admissible step. The accepted step is left in `trial`. Near convergence the
+/// energy decrease falls below round-off; a relative slack of a few ulps lets Newton finish there.
+fn line_search<P: NewtonProblem>(
+    p: &mut P,
+    d: &[f64],
+    c: Option<&[f64]>,
+    e0: f64,
+    slope: f64,
+    trial: &mut [f64],
+) -> Option<f64> {
+    let slack = 64.0 * f64::EPSILON * e0.abs();
+    let fill = |alpha: f64, trial: &mut [f64]| {
+        for i in 0..d.len() {
+            trial[i] = alpha * d[i] + c.map_or(0.0, |c| alpha * alpha * c[i]);
+        }
+    };
+    fill(1.0, trial);
+    let mut alpha = p.max_step(trial);
+    for _ in 0..60 {
+        fill(alpha, trial);
+        let e = p.trial_energy(trial, 1.0);
+        if e.is_finite() && e <= e0 + 1e-4 * alpha * slope.min(0.0) + slack {
+            return Some(alpha);
+        }
+        alpha *= 0.5;
+    }
+    None
+}

@@ -1,0 +1,42 @@
+//! The one generic Newton problem: energy, gradient and Hessian over free unknowns, a way to
+//! try and accept steps, and a continuation parameter. Rods, networks, joints and (later)
+//! constraints all plug in through this interface.
+
+pub trait NewtonProblem {
+    /// A saved iterate, for retrying a continuation step and for secant prediction.
+    type Snapshot: Clone;
+    fn snapshot(&self) -> Self::Snapshot;
+    fn restore(&mut self, s: &Self::Snapshot);
+    /// Moves the free unknowns to current + `factor` × (current − `from`) (secant predictor).
+    fn extrapolate(&mut self, from: &Self::Snapshot, factor: f64);
+    /// Relative residual below which round-off dominates (see `relative_residual`).
+    fn residual_floor(&self) -> f64;
+    fn num_free(&self) -> usize;
+    /// Upper-triangle (row ≤ col) pairs of the Hessian, every diagonal entry included.
+    fn hessian_pattern(&self) -> Vec<(usize, usize)>;
+    /// For each pair of `hessian_pattern`, its index in the Hessian value array.
+    fn set_hessian_slots(&mut self, slots: &[usize]);
+    /// Energy, gradient and optionally Hessian values (by slot) at the current iterate.
+    fn assemble(&self, grad: &mut [f64], hess: Option<&mut [f64]>) -> f64;
+    fn energy(&self) -> f64;
+    /// Energy at the current iterate moved by `alpha · step`, without accepting it.
+    fn trial_energy(&mut self, step: &[f64], alpha: f64) -> f64;
+    /// Gradient at the current iterate moved by `alpha · step`, without accepting it; returns
+    /// the energy there.
+    fn trial_gradient(&mut self, step: &[f64], alpha: f64, grad: &mut [f64]) -> f64;
+    /// A second-order correction c for the step (the line search then follows x + αd + α²c);
+    /// false if none.
+    fn step_correction(&mut self, _step: &[f64], _c: &mut [f64]) -> bool {
+        false
+    }
+    /// Largest admissible `alpha ≤ 1` for `step` (keeps the kinematics well defined).
+    fn max_step(&self, step: &[f64]) -> f64;
+    /// Moves by `alpha · step` and accepts the result as the new iterate.
+    fn accept(&mut self, step: &[f64], alpha: f64);
+    /// Largest residual relative to the problem's force (and moment) scale.
+    fn relative_residual(&self, grad: &[f64]) -> f64;
+    /// Sets the continuation parameter (load factor, prescribed motions) in [0, 1].
+    fn set_continuation(&mut self, lambda: f64);
+    /// Size of a perturbation along `direction` that is small for the problem's geometry.
+    fn perturbation_size(&self, direction: &[f64]) -> f64;
+}

@@ -1,0 +1,73 @@
+//! Newton solver settings and the report it returns.
+
+use serde::Serialize;
+
+#[derive(Debug, Clone)]
+pub struct NewtonSettings {
+    /// Relative residual tolerance (see `NewtonProblem::relative_residual`).
+    pub tolerance: f64,
+    /// Newton iterations allowed per load step (its continuation sub-steps included).
+    pub max_iterations: usize,
+    /// Continuation steps from λ = 0 to 1.
+    pub load_steps: usize,
+    /// Called after every iteration with (load step, iteration, relative residual, energy).
+    pub progress: Option<fn(usize, usize, f64, f64)>,
+}
+
+impl Default for NewtonSettings {
+    fn default() -> Self {
+        NewtonSettings {
+            tolerance: 1e-9,
+            max_iterations: 200,
+            load_steps: 1,
+            progress: None,
+        }
+    }
+}
+
+impl NewtonSettings {
+    pub fn tolerance(mut self, t: f64) -> Self {
+        self.tolerance = t;
+        self
+    }
+    pub fn max_iterations(mut self, n: usize) -> Self {
+        self.max_iterations = n;
+        self
+    }
+    pub fn load_steps(mut self, n: usize) -> Self {
+        self.load_steps = n;
+        self
+    }
+}
+
+#[derive(Debug, Clone, Default, Serialize)]
+pub struct NewtonReport {
+    pub converged: bool,
+    /// Newton iterations summed over load steps.
+    pub iterations: usize,
+    pub load_steps: usize,
+    /// Relative residual at the end.
+    pub residual: f64,
+    pub energy: f64,
+    pub seconds: f64,
+    pub factorizations: usize,
+    /// Iterations whose Hessian needed a diagonal shift to be positive definite.
+    pub regularized_iterations: usize,
+    /// Steps taken along a direction of negative curvature to leave a saddle.
+    pub saddle_escapes: usize,
+    /// The final Hessian factored without a shift (the equilibrium is a strict local minimum,
+    /// up to zero-energy modes).
+    pub stable: bool,
+    /// Seconds spent in numeric factorization and solves.
+    pub factor_seconds: f64,
+    /// Why the solve stopped when it did not converge.
+    pub message: Option<String>,
+    /// Continuation sub-steps taken (at least `load_steps`).
+    pub substeps: usize,
+    /// Sub-steps retried with a smaller increment.
+    pub retries: usize,
+    /// Relative residual that round-off alone produces (convergence uses max(tolerance, floor)).
+    pub residual_floor: f64,
+    /// Iterations per load step.
+    pub step_iterations: Vec<usize>,
+}
