@@ -201,3 +201,46 @@ fn nonconvergence_exits_1_and_still_writes_results() {
     let r: serde_json::Value = serde_json::from_slice(&std::fs::read(&json).unwrap()).unwrap();
     assert_eq!(r["converged"], false);
 }
+
+/// Every syntax form the contract shows must parse: bare and explicit optionals, `Some((x, y, z))`
+/// for `move_to`, `Some(Sphere(..))` for `target`, and elastic joints with named fields.
+#[test]
+fn contract_syntax_forms_parse() {
+    let src = r#"Scene(
+    materials: {
+        "steel": Material(young_modulus: 1e8, poisson_ratio: 0.5, density: 0.0, section: Circle(radius: 0.01)),
+        "soft": Material(young_modulus: 1e6, shear_modulus: Some(4e5), section: Rectangle(width: 0.02, height: 0.01)),
+    },
+    rods: [
+        Rod(name: "a", material: "steel", points: [(0.0, 0.0, 0.0), (1.0, 0.0, 0.0)], subdivide: 4, closed: false, normal: None),
+        Rod(name: "b", material: "soft", points: [(1.0, 0.0, 0.0), (1.0, 1.0, 0.0)], normal: Some((0.0, 0.0, 1.0))),
+    ],
+    joints: [Joint(name: "j0", at: [("a", 1), ("b", 0)], kind: Elastic(bending: 1.0, twist: 2.0, scissor: 3.0))],
+    supports: [
+        Support(rod: "a", vertex: 0, kind: Clamp),
+        Support(rod: "b", vertex: 1, kind: Pin, move_to: Some((1.0, 0.9, 0.1))),
+    ],
+    loads: [Gravity(g: (0.0, 0.0, -9.81)), Torque(rod: "a", vertex: 1, torque: (0.0, 0.0, 0.0))],
+    obstacles: [],
+    target: Some(Sphere(center: (0, 0, 0), radius: 1.0)),
+    solver: Solver(tolerance: 1e-9, max_iterations: 200, load_steps: 1),
+)"#;
+    let s = rodnet::scene::parse("contract.ron", src).unwrap();
+    assert_eq!(s.supports[1].move_to, Some([1.0, 0.9, 0.1]));
+    assert!(s.target.is_some());
+    let e = s.joints[0].kind.elastic().unwrap();
+    assert_eq!(
+        (e.bending, e.twist, e.scissor),
+        (Some(1.0), Some(2.0), Some(3.0))
+    );
+    let cyl = src.replace(
+        "Elastic(bending: 1.0, twist: 2.0, scissor: 3.0)",
+        "Elastic(cylinder: Some(JointCylinder(young_modulus: 1.3e6, diameter: 0.003, height: 0.005)))",
+    );
+    assert!(rodnet::scene::parse("cyl.ron", &cyl).unwrap().joints[0]
+        .kind
+        .elastic()
+        .unwrap()
+        .cylinder
+        .is_some());
+}

@@ -148,18 +148,26 @@ fn bend_fd() {
                 vec![],
                 vec![],
             );
+            let signs = [
+                if rng.uniform() < 0.5 { 1.0 } else { -1.0 },
+                if rng.uniform() < 0.5 { 1.0 } else { -1.0 },
+            ];
             let t = Bend {
                 vars: std::array::from_fn(|i| i),
                 edges: [0, 1],
+                signs,
                 rest: [
                     [rng.range(-0.5, 0.5), rng.range(-0.5, 0.5)],
                     [rng.range(-0.5, 0.5), rng.range(-0.5, 0.5)],
                 ],
                 voronoi: rng.range(0.5, 1.5),
-                ei: [rng.range(0.5, 2.0), rng.range(0.5, 2.0)],
+                ei: [
+                    [rng.range(0.5, 2.0), rng.range(0.5, 2.0)],
+                    [rng.range(0.5, 2.0), rng.range(0.5, 2.0)],
+                ],
             };
             let x = stencil_x(n, rng.range(-4.0, 4.0), rng.range(-4.0, 4.0));
-            check(&t, &st, x, &format!("bend, {what}"));
+            check(&t, &st, x, &format!("bend, {what}, signs {signs:?}"));
         }
     }
 }
@@ -177,9 +185,14 @@ fn twist_fd() {
                 vec![],
                 vec![0.0],
             );
+            let signs = [
+                if k == 1 { -1.0 } else { 1.0 },
+                if k == 2 { -1.0 } else { 1.0 },
+            ];
             let mut t = Twist {
                 vars: std::array::from_fn(|i| i),
                 edges: [0, 1],
+                signs,
                 slot: 0,
                 rest: rng.range(-1.0, 1.0),
                 voronoi: rng.range(0.5, 1.5),
@@ -332,4 +345,68 @@ fn bending_measure_is_bounded_near_fold() {
     let kb = curvature_binormal([1.0, 0.0, 0.0], [phi.cos(), phi.sin(), 0.0]);
     assert!((norm(kb) - 2.0 * (phi / 2.0).sin()).abs() < 1e-12);
     assert!(norm(kb) < 2.0);
+}
+
+#[test]
+fn joint_terms_fd() {
+    use rodnet::energy::{joint_rotation::JointRotation, joint_translation::JointTranslation};
+    let mut rng = Rng::new(7);
+    for wmag in [0.05, 0.9] {
+        let st = State {
+            q: vec![],
+            edges: vec![],
+            frames: vec![
+                FrameRef {
+                    rotation: random_rotation(&mut rng),
+                    accumulated: [0.0; 3],
+                },
+                FrameRef {
+                    rotation: random_rotation(&mut rng),
+                    accumulated: [0.0; 3],
+                },
+            ],
+            twist_prev: vec![],
+            load_factor: 1.0,
+        };
+        let a = normalize(rng.vec3(1.0));
+        let b = normalize(cross(a, rng.vec3(1.0)));
+        let t = JointRotation {
+            vars: std::array::from_fn(|i| i),
+            port_frame: 0,
+            joint_frame: 1,
+            rest: random_rotation(&mut rng),
+            axes: [a, b, cross(a, b)],
+            stiffness: [
+                rng.range(0.5, 2.0),
+                rng.range(0.5, 2.0),
+                rng.range(0.5, 2.0),
+            ],
+        };
+        let w1 = scalef(normalize(rng.vec3(1.0)), wmag);
+        let w2 = scalef(normalize(rng.vec3(1.0)), wmag);
+        check(
+            &t,
+            &st,
+            [w1[0], w1[1], w1[2], w2[0], w2[1], w2[2]],
+            &format!("joint rotation |ω| = {wmag}"),
+        );
+        // Equal frames: no relative rotation and no energy, whatever the rest orientation.
+        let same = State {
+            frames: vec![st.frames[0]; 2],
+            ..st.clone()
+        };
+        assert!(t.eval::<f64>(&same, &[0.0; 6]).abs() < 1e-28);
+        let s = JointTranslation {
+            vars: std::array::from_fn(|i| i),
+            stiffness: 3.0,
+        };
+        let x = rng.vec3(1.0);
+        let y = rng.vec3(1.0);
+        check(
+            &s,
+            &st,
+            [x[0], x[1], x[2], y[0], y[1], y[2]],
+            "joint translation",
+        );
+    }
 }

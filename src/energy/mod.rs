@@ -5,6 +5,8 @@
 pub mod bend;
 pub mod frame_bend;
 pub mod frame_twist;
+pub mod joint_rotation;
+pub mod joint_translation;
 pub mod point_load;
 pub mod stretch;
 pub mod torque;

@@ -4,8 +4,9 @@
 use rayon::prelude::*;
 
 use crate::energy::{
-    bend::Bend, frame_bend::FrameBend, frame_twist::FrameTwist, point_load::PointLoad,
-    stretch::Stretch, torque::Torque, twist::Twist, Category, Term,
+    bend::Bend, frame_bend::FrameBend, frame_twist::FrameTwist, joint_rotation::JointRotation,
+    joint_translation::JointTranslation, point_load::PointLoad, stretch::Stretch, torque::Torque,
+    twist::Twist, Category, Term,
 };
 use crate::math::vec::{normalize, sub, transport};
 use crate::math::{D1, HD};
@@ -22,6 +23,8 @@ pub struct Terms {
     pub twist: Vec<Twist>,
     pub frame_bend: Vec<FrameBend>,
     pub frame_twist: Vec<FrameTwist>,
+    pub joint_rotation: Vec<JointRotation>,
+    pub joint_translation: Vec<JointTranslation>,
     pub loads: Vec<PointLoad>,
     pub torques: Vec<Torque>,
 }
@@ -103,6 +106,8 @@ struct Slots {
     twist: Vec<u32>,
     frame_bend: Vec<u32>,
     frame_twist: Vec<u32>,
+    joint_rotation: Vec<u32>,
+    joint_translation: Vec<u32>,
     loads: Vec<u32>,
     torques: Vec<u32>,
 }
@@ -167,6 +172,8 @@ impl Model {
         pattern_of(&t.twist, &self.free, &mut pairs);
         pattern_of(&t.frame_bend, &self.free, &mut pairs);
         pattern_of(&t.frame_twist, &self.free, &mut pairs);
+        pattern_of(&t.joint_rotation, &self.free, &mut pairs);
+        pattern_of(&t.joint_translation, &self.free, &mut pairs);
         pattern_of(&t.loads, &self.free, &mut pairs);
         pattern_of(&t.torques, &self.free, &mut pairs);
         pairs
@@ -183,6 +190,8 @@ impl Model {
             twist: slots_of(&t.twist, free, slot_of_pair, &mut at),
             frame_bend: slots_of(&t.frame_bend, free, slot_of_pair, &mut at),
             frame_twist: slots_of(&t.frame_twist, free, slot_of_pair, &mut at),
+            joint_rotation: slots_of(&t.joint_rotation, free, slot_of_pair, &mut at),
+            joint_translation: slots_of(&t.joint_translation, free, slot_of_pair, &mut at),
             loads: slots_of(&t.loads, free, slot_of_pair, &mut at),
             torques: slots_of(&t.torques, free, slot_of_pair, &mut at),
         };
@@ -198,6 +207,8 @@ impl Model {
         parts.add(Category::Twist, sum_energy(&t.twist, st));
         parts.add(Category::Bend, sum_energy(&t.frame_bend, st));
         parts.add(Category::Twist, sum_energy(&t.frame_twist, st));
+        parts.add(Category::Joints, sum_energy(&t.joint_rotation, st));
+        parts.add(Category::Joints, sum_energy(&t.joint_translation, st));
         parts.add(Category::External, sum_energy(&t.loads, st));
         parts.add(Category::External, sum_energy(&t.torques, st));
         parts
@@ -223,6 +234,14 @@ impl Model {
         e += assemble_kind(&t.twist, &s.twist, st, &self.free, out);
         e += assemble_kind(&t.frame_bend, &s.frame_bend, st, &self.free, out);
         e += assemble_kind(&t.frame_twist, &s.frame_twist, st, &self.free, out);
+        e += assemble_kind(&t.joint_rotation, &s.joint_rotation, st, &self.free, out);
+        e += assemble_kind(
+            &t.joint_translation,
+            &s.joint_translation,
+            st,
+            &self.free,
+            out,
+        );
         e += assemble_kind(&t.loads, &s.loads, st, &self.free, out);
         e += assemble_kind(&t.torques, &s.torques, st, &self.free, out);
         e

@@ -93,7 +93,9 @@ impl SceneError {
 /// Parses and validates a scene from text; `file` names it in errors.
 pub fn parse(file: &str, src: &str) -> Result<Scene, SceneError> {
     // Implicit `Some` lets scenes write `poisson_ratio: 0.5` as the contract does, while
-    // `Some(..)` and `None` are still accepted.
+    // `Some(..)` and `None` are still accepted. (UNWRAP_VARIANT_NEWTYPES would also unwrap
+    // `Some((x, y, z))` and break the contract's `move_to` syntax, so `Elastic` is a struct
+    // variant instead.)
     let options =
         ron::Options::default().with_default_extension(ron::extensions::Extensions::IMPLICIT_SOME);
     let scene: Scene = options.from_str(src).map_err(|e| SceneError {

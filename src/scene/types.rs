@@ -92,12 +92,57 @@ pub enum JointKind {
     Rigid,
     Hinge,
     Ball,
-    Elastic(ElasticJoint),
+    /// Written `Elastic(bending: .., twist: .., scissor: ..)` or `Elastic(cylinder: ..)`; see
+    /// [`ElasticJoint`] for the fields.
+    Elastic {
+        #[serde(default)]
+        bending: Option<f64>,
+        #[serde(default)]
+        twist: Option<f64>,
+        #[serde(default)]
+        scissor: Option<f64>,
+        #[serde(default)]
+        cylinder: Option<JointCylinder>,
+        #[serde(default)]
+        translation: Option<f64>,
+    },
+}
+
+impl JointKind {
+    /// The elastic joint's parameters, if this is one.
+    pub fn elastic(&self) -> Option<ElasticJoint> {
+        match self {
+            JointKind::Elastic {
+                bending,
+                twist,
+                scissor,
+                cylinder,
+                translation,
+            } => Some(ElasticJoint {
+                bending: *bending,
+                twist: *twist,
+                scissor: *scissor,
+                cylinder: cylinder.clone(),
+                translation: *translation,
+            }),
+            _ => None,
+        }
+    }
+
+    pub fn from_elastic(e: ElasticJoint) -> JointKind {
+        JointKind::Elastic {
+            bending: e.bending,
+            twist: e.twist,
+            scissor: e.scissor,
+            cylinder: e.cylinder,
+            translation: e.translation,
+        }
+    }
 }
 
 /// Elastic joint: rotational springs between each incident rod's frame and the joint's frame,
 /// about the rod's bending axes, its twist axis, and the joint normal (scissor).
-#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Default, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct ElasticJoint {
     /// N·m/rad.
@@ -112,6 +157,10 @@ pub struct ElasticJoint {
     /// Derive the three stiffnesses from a joint cylinder instead.
     #[serde(default)]
     pub cylinder: Option<JointCylinder>,
+    /// N/m; when given, each rod keeps its own node at the joint, tied to the joint's centre by a
+    /// spring of this stiffness. Default: the rods share one node.
+    #[serde(default)]
+    pub translation: Option<f64>,
 }
 
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]

@@ -221,7 +221,7 @@ pub fn validate(s: &Scene) -> Result<(), FieldError> {
                 return err("normal", "must be finite and non-zero".into());
             }
         }
-        if let JointKind::Elastic(e) = &j.kind {
+        if let Some(e) = &j.kind.elastic() {
             for (f, v) in [
                 ("bending", e.bending),
                 ("twist", e.twist),
