@@ -7,37 +7,13 @@
 //! stencil (edge 0 arrives at the vertex, edge 1 leaves it; a reversed edge has tangent −t,
 //! frame (m1, −m2) and angle −θ), and each edge keeps its own rigidities.
 
-use super::{v3, Category, Term};
+use super::{diff3, reduced_term, same, Category, Reduced, Term};
 use crate::math::vec::V3;
 use crate::math::Real;
 use crate::network::state::State;
 use crate::rod::frames::{
-    bend_quadratic, curvature_binormal, edge_frame, material_curvature, EdgeFrame,
+    bend_quadratic, curvature_binormal, material_curvature, oriented_frame_of,
 };
-
-/// Frame of edge `e` between `xa` (towards the stencil's start) and `xb`, oriented along the
-/// stencil: with sign −1 the rod's edge runs from `xb` to `xa`.
-pub fn oriented_frame<T: Real>(
-    st: &State,
-    e: usize,
-    sign: f64,
-    xa: V3<T>,
-    xb: V3<T>,
-    theta: T,
-) -> EdgeFrame<T> {
-    use crate::math::vec::scalef;
-    if sign > 0.0 {
-        edge_frame(xa, xb, theta, &st.edges[e])
-    } else {
-        let f = edge_frame(xb, xa, theta, &st.edges[e]);
-        EdgeFrame {
-            t: scalef(f.t, -1.0),
-            u: f.u,
-            m1: f.m1,
-            m2: scalef(f.m2, -1.0),
-        }
-    }
-}
 
 #[derive(Debug, Clone)]
 pub struct Bend {
@@ -53,11 +29,13 @@ pub struct Bend {
 }
 
 impl Bend {
-    /// Material curvatures (κ1, κ2) in the frames of edge i−1 and edge i.
-    pub fn curvatures<T: Real>(&self, st: &State, x: &[T; 11]) -> [[T; 2]; 2] {
-        let (x0, x1, x2) = (v3(x, 0), v3(x, 3), v3(x, 6));
-        let f0 = oriented_frame(st, self.edges[0], self.signs[0], x0, x1, x[9]);
-        let f1 = oriented_frame(st, self.edges[1], self.signs[1], x1, x2, x[10]);
+    /// Material curvatures (κ1, κ2) in the frames of edge 0 and edge 1, from the reduced
+    /// variables (edge vectors along the stencil, angles).
+    pub fn curvatures<T: Real>(&self, st: &State, y: &[T; 8]) -> [[T; 2]; 2] {
+        let e0: V3<T> = [y[0], y[1], y[2]];
+        let e1: V3<T> = [y[3], y[4], y[5]];
+        let f0 = oriented_frame_of(&st.edges[self.edges[0]], self.signs[0], e0, y[6]);
+        let f1 = oriented_frame_of(&st.edges[self.edges[1]], self.signs[1], e1, y[7]);
         let kb = curvature_binormal(f0.t, f1.t);
         [
             material_curvature(kb, f0.m1, f0.m2),
@@ -66,15 +44,27 @@ impl Bend {
     }
 }
 
+/// y = (x₁ − x₀, x₂ − x₁, θ⁰, θ¹).
+pub(crate) const STENCIL_MAP: [[(usize, f64); 2]; 8] = {
+    let a = diff3(0, 3);
+    let b = diff3(3, 6);
+    [a[0], a[1], a[2], b[0], b[1], b[2], same(9), same(10)]
+};
+
+impl Reduced<11, 8> for Bend {
+    const MAP: [[(usize, f64); 2]; 8] = STENCIL_MAP;
+    fn eval_reduced<T: Real>(&self, st: &State, y: &[T; 8]) -> T {
+        let [k0, k1] = self.curvatures(st, y);
+        let [[a0, b0], [a1, b1]] = self.ei;
+        (bend_quadratic(k0, self.rest[0], a0, b0) + bend_quadratic(k1, self.rest[1], a1, b1))
+            * (0.25 / self.voronoi)
+    }
+}
+
 impl Term<11> for Bend {
     const CATEGORY: Category = Category::Bend;
     fn vars(&self) -> &[usize; 11] {
         &self.vars
     }
-    fn eval<T: Real>(&self, st: &State, x: &[T; 11]) -> T {
-        let [k0, k1] = self.curvatures(st, x);
-        let [[a0, b0], [a1, b1]] = self.ei;
-        (bend_quadratic(k0, self.rest[0], a0, b0) + bend_quadratic(k1, self.rest[1], a1, b1))
-            * (0.25 / self.voronoi)
-    }
+    reduced_term!(11, 8);
 }

@@ -6,9 +6,9 @@
 //! curvature over [0, |e|/2] is the angle between the vertex tangent and the chord, so the clamp
 //! or joint acts exactly at the vertex and the discretization stays second order.
 
-use super::{Category, Term};
+use super::{reduced_term, Category, Reduced, Term};
 use crate::math::Real;
-use crate::network::port::{half_stencil, Port};
+use crate::network::port::{half_stencil, Port, HALF_STENCIL_MAP};
 use crate::network::state::State;
 use crate::rod::frames::{bend_quadratic, curvature_binormal, material_curvature};
 
@@ -25,8 +25,10 @@ pub struct FrameBend {
 }
 
 impl FrameBend {
-    pub fn curvatures<T: Real>(&self, st: &State, x: &[T; 11]) -> [[T; 2]; 2] {
-        let h = half_stencil(st, &self.port, self.edge, self.sign, x);
+    /// Material curvatures in the frame's and the edge's frames, from the reduced variables
+    /// (x_other − x_vertex, θ, ω, α).
+    pub fn curvatures<T: Real>(&self, st: &State, y: &[T; 8]) -> [[T; 2]; 2] {
+        let h = half_stencil(st, &self.port, self.edge, self.sign, y);
         let kb = curvature_binormal(h.tf, h.te);
         [
             material_curvature(kb, h.d1, h.d2),
@@ -35,15 +37,20 @@ impl FrameBend {
     }
 }
 
+impl Reduced<11, 8> for FrameBend {
+    const MAP: [[(usize, f64); 2]; 8] = HALF_STENCIL_MAP;
+    fn eval_reduced<T: Real>(&self, st: &State, y: &[T; 8]) -> T {
+        let [kf, ke] = self.curvatures(st, y);
+        let [a, b] = self.ei;
+        (bend_quadratic(kf, self.rest[0], a, b) + bend_quadratic(ke, self.rest[1], a, b))
+            * (0.25 / self.voronoi)
+    }
+}
+
 impl Term<11> for FrameBend {
     const CATEGORY: Category = Category::Bend;
     fn vars(&self) -> &[usize; 11] {
         &self.vars
     }
-    fn eval<T: Real>(&self, st: &State, x: &[T; 11]) -> T {
-        let [kf, ke] = self.curvatures(st, x);
-        let [a, b] = self.ei;
-        (bend_quadratic(kf, self.rest[0], a, b) + bend_quadratic(ke, self.rest[1], a, b))
-            * (0.25 / self.voronoi)
-    }
+    reduced_term!(11, 8);
 }

@@ -4,10 +4,10 @@
 //! The reference part (to the edge's reference director u) is unwrapped by 2π from its last
 //! accepted value; the edge's own angle enters linearly.
 
-use super::{Category, Term};
+use super::{reduced_term, Category, Reduced, Term};
 use crate::math::vec::{signed_angle, transport};
 use crate::math::Real;
-use crate::network::port::{half_stencil, Port};
+use crate::network::port::{half_stencil, Port, HALF_STENCIL_MAP};
 use crate::network::state::State;
 use crate::rod::frames::unwrap_angle;
 
@@ -25,14 +25,28 @@ pub struct FrameTwist {
 }
 
 impl FrameTwist {
-    pub fn reference_twist<T: Real>(&self, st: &State, x: &[T; 11]) -> T {
-        let h = half_stencil(st, &self.port, self.edge, self.sign, x);
+    /// From the reduced variables (x_other − x_vertex, θ, ω, α).
+    pub fn reference_twist<T: Real>(&self, st: &State, y: &[T; 8]) -> T {
+        let h = half_stencil(st, &self.port, self.edge, self.sign, y);
         let raw = signed_angle(transport(h.tf, h.te, h.d1), h.u, h.te);
         unwrap_angle(raw, st.twist_prev[self.slot])
     }
 
-    pub fn twist<T: Real>(&self, st: &State, x: &[T; 11]) -> T {
-        self.reference_twist(st, x) + x[6] * self.sign
+    pub fn twist<T: Real>(&self, st: &State, y: &[T; 8]) -> T {
+        self.reference_twist(st, y) + y[3] * self.sign
+    }
+
+    /// Reduced variables of a full local vector.
+    pub fn reduced<T: Real>(x: &[T; 11]) -> [T; 8] {
+        super::reduce(&HALF_STENCIL_MAP, x)
+    }
+}
+
+impl Reduced<11, 8> for FrameTwist {
+    const MAP: [[(usize, f64); 2]; 8] = HALF_STENCIL_MAP;
+    fn eval_reduced<T: Real>(&self, st: &State, y: &[T; 8]) -> T {
+        let d = self.twist(st, y) - self.rest;
+        d * d * (0.5 * self.gj / self.voronoi)
     }
 }
 
@@ -41,8 +55,5 @@ impl Term<11> for FrameTwist {
     fn vars(&self) -> &[usize; 11] {
         &self.vars
     }
-    fn eval<T: Real>(&self, st: &State, x: &[T; 11]) -> T {
-        let d = self.twist(st, x) - self.rest;
-        d * d * (0.5 * self.gj / self.voronoi)
-    }
+    reduced_term!(11, 8);
 }

@@ -1,8 +1,7 @@
 //! Translational spring of an elastic joint: E = ½ k |x_rod − p|² between a rod's node and the
 //! joint's centre node (both at the same rest position).
 
-use super::{v3, Category, Term};
-use crate::math::vec::sub;
+use super::{diff3, reduced_term, Category, Reduced, Term};
 use crate::math::Real;
 use crate::network::state::State;
 
@@ -14,13 +13,18 @@ pub struct JointTranslation {
     pub stiffness: f64,
 }
 
+impl Reduced<6, 3> for JointTranslation {
+    // x_rod − p.
+    const MAP: [[(usize, f64); 2]; 3] = diff3(3, 0);
+    fn eval_reduced<T: Real>(&self, _st: &State, d: &[T; 3]) -> T {
+        (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) * (0.5 * self.stiffness)
+    }
+}
+
 impl Term<6> for JointTranslation {
     const CATEGORY: Category = Category::Joints;
     fn vars(&self) -> &[usize; 6] {
         &self.vars
     }
-    fn eval<T: Real>(&self, _st: &State, x: &[T; 6]) -> T {
-        let d = sub(v3(x, 0), v3(x, 3));
-        (d[0] * d[0] + d[1] * d[1] + d[2] * d[2]) * (0.5 * self.stiffness)
-    }
+    reduced_term!(6, 3);
 }

@@ -12,7 +12,7 @@ pub mod stretch;
 pub mod torque;
 pub mod twist;
 
-use crate::math::Real;
+use crate::math::{Real, HD};
 use crate::network::state::State;
 
 /// Where a term's energy is reported in the results.
@@ -31,6 +31,12 @@ pub trait Term<const N: usize>: Sync + Send {
     fn vars(&self) -> &[usize; N];
     fn eval<T: Real>(&self, st: &State, x: &[T; N]) -> T;
 
+    /// Exact value, gradient and Hessian at `x` (default: hyper-dual evaluation in all N
+    /// variables; [`Reduced`] terms use fewer).
+    fn derivatives(&self, st: &State, x: &[f64; N]) -> HD<N> {
+        self.eval(st, &HD::<N>::vars(x))
+    }
+
     fn gather(&self, q: &[f64]) -> [f64; N] {
         let v = self.vars();
         std::array::from_fn(|i| q[v[i]])
@@ -41,8 +47,94 @@ pub trait Term<const N: usize>: Sync + Send {
     }
 }
 
-/// Splits a local variable array into 3-vectors and scalars.
+/// A term whose N variables enter only through M ≤ N linear combinations y = A x (edge vectors
+/// x_b − x_a instead of both end points): differentiating in y costs (M/N)² of differentiating
+/// in x, and the exact x-derivatives follow as ∇ₓ = Aᵀ∇ᵧ, Hₓ = AᵀHᵧA.
+pub trait Reduced<const N: usize, const M: usize> {
+    /// Row i of A: y_i = Σ c·x_j over its (j, c) entries (c = 0 entries are padding).
+    const MAP: [[(usize, f64); 2]; M];
+    fn eval_reduced<T: Real>(&self, st: &State, y: &[T; M]) -> T;
+}
+
+/// y = A x.
 #[inline]
-pub(crate) fn v3<T: Copy>(x: &[T], at: usize) -> [T; 3] {
-    [x[at], x[at + 1], x[at + 2]]
+pub fn reduce<T: Real, const N: usize, const M: usize>(
+    map: &[[(usize, f64); 2]; M],
+    x: &[T; N],
+) -> [T; M] {
+    std::array::from_fn(|i| {
+        let mut y = T::cst(0.0);
+        for &(j, c) in &map[i] {
+            if c != 0.0 {
+                y += x[j] * c;
+            }
+        }
+        y
+    })
+}
+
+/// Derivatives in x from derivatives in y = A x.
+pub fn expand<const N: usize, const M: usize>(map: &[[(usize, f64); 2]; M], r: &HD<M>) -> HD<N> {
+    let mut out = HD::<N>::cst(r.v);
+    let hy = r.hessian();
+    let mut hx = [[0.0; N]; N];
+    for i in 0..M {
+        for &(j, c) in &map[i] {
+            if c == 0.0 {
+                continue;
+            }
+            out.g[j] += c * r.g[i];
+            for k in 0..M {
+                for &(l, d) in &map[k] {
+                    if d != 0.0 {
+                        hx[j][l] += c * d * hy[i][k];
+                    }
+                }
+            }
+        }
+    }
+    for i in 0..N {
+        for j in i..N {
+            out.h[i][j] = hx[i][j];
+        }
+    }
+    out
+}
+
+/// Implements `eval` and `derivatives` of a [`Term`] through its [`Reduced`] form.
+macro_rules! reduced_term {
+    ($n:literal, $m:literal) => {
+        fn eval<T: Real>(&self, st: &State, x: &[T; $n]) -> T {
+            <Self as super::Reduced<$n, $m>>::eval_reduced(
+                self,
+                st,
+                &super::reduce(&<Self as super::Reduced<$n, $m>>::MAP, x),
+            )
+        }
+        fn derivatives(&self, st: &State, x: &[f64; $n]) -> crate::math::HD<$n> {
+            let map = &<Self as super::Reduced<$n, $m>>::MAP;
+            let y = super::reduce(map, x);
+            let r = <Self as super::Reduced<$n, $m>>::eval_reduced(
+                self,
+                st,
+                &crate::math::HD::<$m>::vars(&y),
+            );
+            super::expand(map, &r)
+        }
+    };
+}
+pub(crate) use reduced_term;
+
+/// Map rows for "x[b..b+3] − x[a..a+3]" (edge vectors).
+pub(crate) const fn diff3(a: usize, b: usize) -> [[(usize, f64); 2]; 3] {
+    [
+        [(b, 1.0), (a, -1.0)],
+        [(b + 1, 1.0), (a + 1, -1.0)],
+        [(b + 2, 1.0), (a + 2, -1.0)],
+    ]
+}
+
+/// Map row for "x[j]".
+pub(crate) const fn same(j: usize) -> [(usize, f64); 2] {
+    [(j, 1.0), (0, 0.0)]
 }

@@ -1,7 +1,7 @@
 //! Stretching: E = ½ EA (|e|/|ē| − 1)² |ē| per edge.
 
-use super::{v3, Category, Term};
-use crate::math::vec::{norm, sub};
+use super::{diff3, reduced_term, Category, Reduced, Term};
+use crate::math::vec::norm;
 use crate::math::Real;
 use crate::network::state::State;
 
@@ -13,14 +13,18 @@ pub struct Stretch {
     pub ea: f64,
 }
 
+impl Reduced<6, 3> for Stretch {
+    const MAP: [[(usize, f64); 2]; 3] = diff3(0, 3);
+    fn eval_reduced<T: Real>(&self, _st: &State, e: &[T; 3]) -> T {
+        let strain = norm(*e) / self.rest_length - 1.0;
+        strain * strain * (0.5 * self.ea * self.rest_length)
+    }
+}
+
 impl Term<6> for Stretch {
     const CATEGORY: Category = Category::Stretch;
     fn vars(&self) -> &[usize; 6] {
         &self.vars
     }
-    fn eval<T: Real>(&self, _st: &State, x: &[T; 6]) -> T {
-        let l = norm(sub(v3(x, 3), v3(x, 0)));
-        let strain = l / self.rest_length - 1.0;
-        strain * strain * (0.5 * self.ea * self.rest_length)
-    }
+    reduced_term!(6, 3);
 }

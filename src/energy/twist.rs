@@ -5,12 +5,12 @@
 //! stencil as in [`super::bend`] (an edge against it contributes −θ), so the stencil also spans a
 //! valence-2 rigid joint between two rods; GJ is then the series value over the two half-edges.
 
-use super::bend::oriented_frame;
-use super::{v3, Category, Term};
+use super::bend::STENCIL_MAP;
+use super::{reduced_term, Category, Reduced, Term};
 use crate::math::vec::{signed_angle, transport};
 use crate::math::Real;
 use crate::network::state::State;
-use crate::rod::frames::unwrap_angle;
+use crate::rod::frames::{oriented_frame_of, unwrap_angle};
 
 #[derive(Debug, Clone)]
 pub struct Twist {
@@ -26,18 +26,41 @@ pub struct Twist {
 }
 
 impl Twist {
-    pub fn reference_twist<T: Real>(&self, st: &State, x: &[T; 11]) -> T {
-        let (x0, x1, x2) = (v3(x, 0), v3(x, 3), v3(x, 6));
+    /// Reference twist from the reduced variables (edge vectors along the stencil, angles).
+    pub fn reference_twist<T: Real>(&self, st: &State, y: &[T; 8]) -> T {
         let zero = T::cst(0.0);
-        let f0 = oriented_frame(st, self.edges[0], self.signs[0], x0, x1, zero);
-        let f1 = oriented_frame(st, self.edges[1], self.signs[1], x1, x2, zero);
+        let f0 = oriented_frame_of(
+            &st.edges[self.edges[0]],
+            self.signs[0],
+            [y[0], y[1], y[2]],
+            zero,
+        );
+        let f1 = oriented_frame_of(
+            &st.edges[self.edges[1]],
+            self.signs[1],
+            [y[3], y[4], y[5]],
+            zero,
+        );
         let raw = signed_angle(transport(f0.t, f1.t, f0.u), f1.u, f1.t);
         unwrap_angle(raw, st.twist_prev[self.slot])
     }
 
-    /// Discrete twist m (radians).
-    pub fn twist<T: Real>(&self, st: &State, x: &[T; 11]) -> T {
-        self.reference_twist(st, x) + x[10] * self.signs[1] - x[9] * self.signs[0]
+    /// Discrete twist m (radians) from the reduced variables.
+    pub fn twist<T: Real>(&self, st: &State, y: &[T; 8]) -> T {
+        self.reference_twist(st, y) + y[7] * self.signs[1] - y[6] * self.signs[0]
+    }
+
+    /// Reduced variables of a full local vector.
+    pub fn reduced<T: Real>(x: &[T; 11]) -> [T; 8] {
+        super::reduce(&STENCIL_MAP, x)
+    }
+}
+
+impl Reduced<11, 8> for Twist {
+    const MAP: [[(usize, f64); 2]; 8] = STENCIL_MAP;
+    fn eval_reduced<T: Real>(&self, st: &State, y: &[T; 8]) -> T {
+        let d = self.twist(st, y) - self.rest;
+        d * d * (0.5 * self.gj / self.voronoi)
     }
 }
 
@@ -46,8 +69,5 @@ impl Term<11> for Twist {
     fn vars(&self) -> &[usize; 11] {
         &self.vars
     }
-    fn eval<T: Real>(&self, st: &State, x: &[T; 11]) -> T {
-        let d = self.twist(st, x) - self.rest;
-        d * d * (0.5 * self.gj / self.voronoi)
-    }
+    reduced_term!(11, 8);
 }

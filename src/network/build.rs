@@ -85,8 +85,8 @@ impl Stencil {
             voronoi,
             ei: [[k0.ei1, k0.ei2], [k1.ei1, k1.ei2]],
         };
-        let x = bend.gather(&state.q);
-        bend.rest = bend.curvatures::<f64>(state, &x);
+        let y = Twist::reduced(&bend.gather(&state.q));
+        bend.rest = bend.curvatures::<f64>(state, &y);
         terms.bend.push(bend);
         let slot = state.twist_prev.len();
         state.twist_prev.push(0.0);
@@ -101,8 +101,8 @@ impl Stencil {
             voronoi,
             gj,
         };
-        state.twist_prev[slot] = tw.reference_twist::<f64>(state, &x);
-        tw.rest = tw.twist::<f64>(state, &x);
+        state.twist_prev[slot] = tw.reference_twist::<f64>(state, &y);
+        tw.rest = tw.twist::<f64>(state, &y);
         terms.twist.push(tw);
     }
 }
@@ -553,8 +553,8 @@ pub fn build(scene: &Scene) -> Result<Network, FieldError> {
                 voronoi,
                 ei: [k.ei1, k.ei2],
             };
-            let x = bend.gather(&state.q);
-            bend.rest = bend.curvatures::<f64>(&state, &x);
+            let y = FrameTwist::reduced(&bend.gather(&state.q));
+            bend.rest = bend.curvatures::<f64>(&state, &y);
             terms.frame_bend.push(bend);
             let slot = state.twist_prev.len();
             state.twist_prev.push(0.0);
@@ -568,8 +568,8 @@ pub fn build(scene: &Scene) -> Result<Network, FieldError> {
                 voronoi,
                 gj: k.gj,
             };
-            state.twist_prev[slot] = tw.reference_twist::<f64>(&state, &x);
-            tw.rest = tw.twist::<f64>(&state, &x);
+            state.twist_prev[slot] = tw.reference_twist::<f64>(&state, &y);
+            tw.rest = tw.twist::<f64>(&state, &y);
             terms.frame_twist.push(tw);
         }
     }

@@ -9,6 +9,8 @@ use crate::energy::{
     twist::Twist, Category, Term,
 };
 use crate::math::vec::{normalize, sub, transport};
+#[allow(unused_imports)]
+use crate::math::Real;
 use crate::math::{D1, HD};
 use crate::network::state::State;
 
@@ -302,13 +304,13 @@ impl Model {
             .map(|tw| {
                 (
                     tw.slot,
-                    tw.reference_twist::<f64>(&self.state, &tw.gather(q)),
+                    tw.reference_twist::<f64>(&self.state, &Twist::reduced(&tw.gather(q))),
                 )
             })
             .chain(self.terms.frame_twist.iter().map(|tw| {
                 (
                     tw.slot,
-                    tw.reference_twist::<f64>(&self.state, &tw.gather(q)),
+                    tw.reference_twist::<f64>(&self.state, &FrameTwist::reduced(&tw.gather(q))),
                 )
             }))
             .collect();
@@ -538,10 +540,7 @@ fn assemble_kind<const N: usize, E: Term<N>>(
     let mut energy = 0.0;
     let mut local: Vec<HD<N>> = Vec::new();
     for (b, block) in terms.chunks(BLOCK).enumerate() {
-        let eval = |t: &E| {
-            let x = HD::<N>::vars(&t.gather(&st.q));
-            t.eval(st, &x)
-        };
+        let eval = |t: &E| t.derivatives(st, &t.gather(&st.q));
         if block.len() > 64 {
             block.par_iter().map(eval).collect_into_vec(&mut local);
         } else {

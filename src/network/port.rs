@@ -52,31 +52,41 @@ pub struct HalfStencil<T> {
     pub theta: T,
 }
 
-/// Local variables of a half-stencil: (x_vertex, x_other, θ, ω, α).
+/// Map from a half-stencil's local variables (x_vertex, x_other, θ, ω, α) to its reduced ones
+/// (x_other − x_vertex, θ, ω, α).
+pub(crate) const HALF_STENCIL_MAP: [[(usize, f64); 2]; 8] = {
+    use crate::energy::{diff3, same};
+    let e = diff3(0, 3);
+    [
+        e[0],
+        e[1],
+        e[2],
+        same(6),
+        same(7),
+        same(8),
+        same(9),
+        same(10),
+    ]
+};
+
+/// Half-stencil pieces from the reduced variables y = (x_other − x_vertex, θ, ω, α).
 pub fn half_stencil<T: Real>(
     st: &State,
     port: &Port,
     edge: usize,
     sign: f64,
-    x: &[T; 11],
+    y: &[T; 8],
 ) -> HalfStencil<T> {
-    let xv = [x[0], x[1], x[2]];
-    let xo = [x[3], x[4], x[5]];
-    let f = port.frame(st, [x[7], x[8], x[9]], x[10]);
-    let r = &st.edges[edge];
-    let ef = if sign > 0.0 {
-        crate::rod::frames::edge_frame(xv, xo, x[6], r)
-    } else {
-        crate::rod::frames::edge_frame(xo, xv, x[6], r)
-    };
+    let f = port.frame(st, [y[4], y[5], y[6]], y[7]);
+    let ef = crate::rod::frames::oriented_frame_of(&st.edges[edge], sign, [y[0], y[1], y[2]], y[3]);
     HalfStencil {
         d1: f[0],
         d2: scalef(f[1], sign),
         tf: scalef(f[2], sign),
-        te: scalef(ef.t, sign),
+        te: ef.t,
         u: ef.u,
         m1: ef.m1,
-        m2: scalef(ef.m2, sign),
-        theta: x[6] * sign,
+        m2: ef.m2,
+        theta: y[3] * sign,
     }
 }

@@ -25,7 +25,12 @@ pub struct EdgeFrame<T> {
 }
 
 pub fn edge_frame<T: Real>(xa: V3<T>, xb: V3<T>, theta: T, r: &EdgeRef) -> EdgeFrame<T> {
-    let t = normalize(sub(xb, xa));
+    edge_frame_of(sub(xb, xa), theta, r)
+}
+
+/// Material frame of an edge from its vector e = x_b − x_a.
+pub fn edge_frame_of<T: Real>(e: V3<T>, theta: T, r: &EdgeRef) -> EdgeFrame<T> {
+    let t = normalize(e);
     let u = transport(lift(r.t), t, lift(r.u));
     let v = cross(t, u);
     let (s, c) = (theta.sin(), theta.cos());
@@ -69,4 +74,20 @@ pub fn bend_quadratic<T: Real>(k: [T; 2], rest: [f64; 2], ei1: f64, ei2: f64) ->
     let d1 = k[0] - rest[0];
     let d2 = k[1] - rest[1];
     d1 * d1 * ei1 + d2 * d2 * ei2
+}
+
+/// Frame of edge `e` whose vector *along the stencil* is `along`: with sign −1 the rod's edge
+/// runs against the stencil, so its tangent is −t, its frame (m1, −m2) and its angle −θ.
+pub fn oriented_frame_of<T: Real>(r: &EdgeRef, sign: f64, along: V3<T>, theta: T) -> EdgeFrame<T> {
+    if sign > 0.0 {
+        edge_frame_of(along, theta, r)
+    } else {
+        let f = edge_frame_of(scalef(along, -1.0), theta, r);
+        EdgeFrame {
+            t: scalef(f.t, -1.0),
+            u: f.u,
+            m1: f.m1,
+            m2: scalef(f.m2, -1.0),
+        }
+    }
 }

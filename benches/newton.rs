@@ -1,0 +1,193 @@
+//! Cost of the pieces of a Newton iteration and of whole solves.
+//!
+//! `cargo bench --bench newton` (add `RAYON_NUM_THREADS=1` to measure serial assembly).
+//! - `grid_*`: a 20×20 grid of crossing rods (Ball joints at 400 crossings, pinned ends, gravity),
+//!   subdivide 4: energy+gradient+Hessian assembly, symbolic analysis, numeric factorization, and
+//!   one full Newton iteration (assembly, factorization, solve, length projection, line search).
+//! - `cantilever_solve`: the large-deflection cantilever (PL²/EI = 2) from rest, N edges.
+
+use std::collections::BTreeMap;
+
+use rodnet::network::build::build;
+use rodnet::network::model::{Assembly, Model};
+use rodnet::scene::types::*;
+use rodnet::solver::linalg::SparseCholesky;
+use rodnet::solver::{NewtonProblem, NewtonSettings};
+
+fn main() {
+    divan::main();
+}
+
+fn material(r: f64) -> Material {
+    Material {
+        young_modulus: 4.0 / (std::f64::consts::PI * r.powi(4)),
+        poisson_ratio: Some(0.3),
+        shear_modulus: None,
+        density: 1000.0,
+        section: Section::Circle { radius: r },
+    }
+}
+
+fn grid_scene(n: usize, subdivide: usize) -> Scene {
+    let mut materials = BTreeMap::new();
+    materials.insert("m".to_string(), material(0.01));
+    let mut rods = Vec::new();
+    let mut joints = Vec::new();
+    let mut supports = Vec::new();
+    let len = (n + 1) as f64;
+    for k in 0..n {
+        let c = (k + 1) as f64;
+        let xs: Vec<[f64; 3]> = (0..=n + 1).map(|i| [i as f64, c, 0.0]).collect();
+        let ys: Vec<[f64; 3]> = (0..=n + 1).map(|i| [c, i as f64, 0.0]).collect();
+        for (name, pts) in [(format!("x{k}"), xs), (format!("y{k}"), ys)] {
+            supports.push(Support {
+                rod: name.clone(),
+                vertex: 0,
+                kind: SupportKind::Pin,
+                move_to: None,
+                rotate_by: None,
+            });
+            supports.push(Support {
+                rod: name.clone(),
+                vertex: n + 1,
+                kind: SupportKind::Pin,
+                move_to: None,
+                rotate_by: None,
+            });
+            rods.push(Rod {
+                name,
+                material: "m".into(),
+                points: pts,
+                subdivide,
+                closed: false,
+                normal: None,
+            });
+        }
+    }
+    for i in 0..n {
+        for j in 0..n {
+            joints.push(Joint {
+                name: format!("j{i}_{j}"),
+                at: vec![(format!("x{j}"), i + 1), (format!("y{i}"), j + 1)],
+                kind: JointKind::Ball,
+                normal: None,
+            });
+        }
+    }
+    let _ = len;
+    Scene {
+        materials,
+        rods,
+        joints,
+        supports,
+        loads: vec![Load::Gravity {
+            g: [0.0, 0.0, -9.81],
+        }],
+        obstacles: vec![],
+        target: None,
+        solver: Solver::default(),
+    }
+}
+
+fn grid_model() -> (Model, SparseCholesky) {
+    let mut m = build(&grid_scene(20, 4)).unwrap().model;
+    m.set_load(1.0);
+    let (chol, slots) = SparseCholesky::new(m.n_free, &m.hessian_pattern());
+    m.set_slots(&slots);
+    (m, chol)
+}
+
+#[divan::bench]
+fn grid_assembly(bencher: divan::Bencher) {
+    let (m, mut chol) = grid_model();
+    let mut g = vec![0.0; m.n_free];
+    bencher.bench_local(|| {
+        m.assemble(&mut Assembly {
+            grad: &mut g,
+            full_grad: None,
+            hess: Some(&mut chol.values),
+        })
+    });
+}
+
+#[divan::bench]
+fn grid_symbolic(bencher: divan::Bencher) {
+    let (m, _) = grid_model();
+    let pairs = m.hessian_pattern();
+    bencher.bench_local(|| SparseCholesky::new(m.n_free, &pairs).1.len());
+}
+
+#[divan::bench]
+fn grid_factorization(bencher: divan::Bencher) {
+    let (m, mut chol) = grid_model();
+    let mut g = vec![0.0; m.n_free];
+    m.assemble(&mut Assembly {
+        grad: &mut g,
+        full_grad: None,
+        hess: Some(&mut chol.values),
+    });
+    bencher.bench_local(|| chol.factor(0.0).is_ok());
+}
+
+#[divan::bench]
+fn grid_newton_iteration(bencher: divan::Bencher) {
+    let (m0, mut chol) = grid_model();
+    let n = m0.n_free;
+    let (mut g, mut d, mut c) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+    bencher
+        .with_inputs(|| m0.clone())
+        .bench_local_values(|mut m: Model| {
+            let e0 = m.assemble(&mut Assembly {
+                grad: &mut g,
+                full_grad: None,
+                hess: Some(&mut chol.values),
+            });
+            chol.factor(0.0).expect("positive definite");
+            for i in 0..n {
+                d[i] = -g[i];
+            }
+            chol.solve(&mut d);
+            m.step_correction(&d, &mut c);
+            let e1 = m.trial_energy(&d, 1.0);
+            m.accept(&d, 1.0);
+            (e0, e1)
+        });
+}
+
+#[divan::bench(args = [10, 40, 160, 640])]
+fn cantilever_solve(bencher: divan::Bencher, n: usize) {
+    let mut materials = BTreeMap::new();
+    materials.insert("m".to_string(), material(1e-3));
+    let s = Scene {
+        materials,
+        rods: vec![Rod {
+            name: "b".into(),
+            material: "m".into(),
+            points: vec![[0.0; 3], [1.0, 0.0, 0.0]],
+            subdivide: n,
+            closed: false,
+            normal: None,
+        }],
+        joints: vec![],
+        supports: vec![Support {
+            rod: "b".into(),
+            vertex: 0,
+            kind: SupportKind::Clamp,
+            move_to: None,
+            rotate_by: None,
+        }],
+        loads: vec![Load::Force {
+            rod: "b".into(),
+            vertex: 1,
+            force: [0.0, -2.0, 0.0],
+        }],
+        obstacles: vec![],
+        target: None,
+        solver: Solver::default(),
+    };
+    let settings = NewtonSettings::default();
+    bencher.bench_local(|| {
+        let mut net = build(&s).unwrap();
+        rodnet::solver::solve(&mut net.model, &settings).converged
+    });
+}
