@@ -3,10 +3,14 @@
 use std::io::IsTerminal;
 use std::path::PathBuf;
 
-use clap::{Parser, Subcommand};
+use clap::{Args, Parser, Subcommand, ValueEnum};
 
+use crate::gridshell::footprint::{self, HemisphereSpec, JointChoice};
+use crate::gridshell::formfind::DEFAULT_START_CAP;
+use crate::gridshell::job as gridshell_job;
 use crate::io::{atomic, csv, obj};
 use crate::job;
+use crate::scene::types::Section;
 use crate::scene::{self, SceneError};
 
 #[derive(Parser, Debug)]
@@ -39,6 +43,134 @@ pub enum Command {
         #[arg(long)]
         quiet: bool,
     },
+    /// Elastic gridshells: generate, form-find and compare with the analytic shape.
+    Gridshell {
+        #[command(subcommand)]
+        shape: GridshellCommand,
+    },
+}
+
+#[derive(Subcommand, Debug)]
+pub enum GridshellCommand {
+    /// Hemispherical Chebyshev-net gridshell (Baek et al., PNAS 2018): builds the flat footprint
+    /// from straight rods, moves the rod ends onto the equator, and compares the dome with the
+    /// sphere and the net. With no output options it writes hemisphere.json, hemisphere.obj and
+    /// hemisphere.txt into the current directory (or --out-dir).
+    Hemisphere(HemisphereArgs),
+}
+
+#[derive(ValueEnum, Debug, Clone, Copy, PartialEq, Eq)]
+pub enum JointArg {
+    Ball,
+    Hinge,
+    Rigid,
+}
+
+/// Default rods per family of the gridshell job.
+pub const DEFAULT_RODS: usize = 12;
+/// Default edges per segment between crossings of the gridshell job.
+pub const DEFAULT_SUBDIVIDE: usize = 4;
+/// Largest n accepted (the net generator is tested up to 200).
+pub const MAX_RODS: usize = 200;
+
+#[derive(Args, Debug)]
+pub struct HemisphereArgs {
+    /// Sphere radius R, m.
+    #[arg(long, default_value_t = 1.0)]
+    pub radius: f64,
+    /// Rods per family n.
+    #[arg(long, default_value_t = DEFAULT_RODS)]
+    pub rods: usize,
+    /// Equal edges per segment between neighbouring crossings (and between the last crossing
+    /// and a rod end).
+    #[arg(long, default_value_t = DEFAULT_SUBDIVIDE)]
+    pub subdivide: usize,
+    /// Joint at every crossing.
+    #[arg(long, value_enum, default_value_t = JointArg::Ball)]
+    pub joint: JointArg,
+    /// Rod cross-section, dimensions in units of R: circle:r, ellipse:a,b or rectangle:w,h
+    /// (the first dimension lies tangent to the shell).
+    #[arg(long, default_value = "circle:0.005", value_parser = parse_section)]
+    pub section: SectionRatio,
+    /// Young's modulus E, Pa (the shape does not depend on it).
+    #[arg(long, default_value_t = 1e9)]
+    pub young_modulus: f64,
+    /// Poisson's ratio ν (shear modulus E/(2(1+ν))).
+    #[arg(long, default_value_t = 0.3)]
+    pub poisson_ratio: f64,
+    /// Continuation steps of the boundary motion (rodnet subdivides them as needed).
+    #[arg(long, default_value_t = 8)]
+    pub load_steps: usize,
+    /// Relative residual tolerance (see docs/scene-format.md).
+    #[arg(long, default_value_t = 1e-9)]
+    pub tolerance: f64,
+    /// Radius of the shallow cap, over R, onto which the footprint is first bent (upward and
+    /// without stretching) to break the up-down symmetry; 0 starts from the flat footprint.
+    #[arg(long, default_value_t = DEFAULT_START_CAP)]
+    pub start_cap: f64,
+    /// Write the footprint scene (RON) here; alone, without other outputs, nothing is solved.
+    #[arg(long)]
+    pub scene_out: Option<PathBuf>,
+    /// Write the results JSON here.
+    #[arg(long)]
+    pub json: Option<PathBuf>,
+    /// Write the equilibrium as OBJ polylines here.
+    #[arg(long)]
+    pub obj: Option<PathBuf>,
+    /// Write the text report here.
+    #[arg(long)]
+    pub report: Option<PathBuf>,
+    /// Write hemisphere.json, hemisphere.obj and hemisphere.txt into this directory (the
+    /// default, into the current directory, applies when no output option is given).
+    #[arg(long)]
+    pub out_dir: Option<PathBuf>,
+    /// No progress output.
+    #[arg(long)]
+    pub quiet: bool,
+}
+
+/// A cross-section with its dimensions in units of the sphere radius.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct SectionRatio(pub Section);
+
+impl SectionRatio {
+    fn scaled(self, r: f64) -> Section {
+        match self.0 {
+            Section::Circle { radius } => Section::Circle { radius: radius * r },
+            Section::Ellipse { a, b } => Section::Ellipse { a: a * r, b: b * r },
+            Section::Rectangle { width, height } => Section::Rectangle {
+                width: width * r,
+                height: height * r,
+            },
+        }
+    }
+}
+
+fn parse_section(s: &str) -> Result<SectionRatio, String> {
+    let (kind, dims) = s
+        .split_once(':')
+        .ok_or_else(|| format!("expected circle:r, ellipse:a,b or rectangle:w,h, got {s:?}"))?;
+    let dims: Vec<f64> = dims
+        .split(',')
+        .map(|d| {
+            d.trim()
+                .parse::<f64>()
+                .ok()
+                .filter(|v| v.is_finite() && *v > 0.0)
+                .ok_or_else(|| format!("section dimension {d:?} is not a positive number"))
+        })
+        .collect::<Result<_, _>>()?;
+    let section = match (kind, dims.as_slice()) {
+        ("circle", &[radius]) => Section::Circle { radius },
+        ("ellipse", &[a, b]) => Section::Ellipse { a, b },
+        ("rectangle", &[width, height]) => Section::Rectangle { width, height },
+        _ => {
+            return Err(format!(
+                "expected circle:r, ellipse:a,b or rectangle:w,h, got {s:?}"
+            ))
+        }
+    };
+    Ok(SectionRatio(section))
 }
 
 /// Exit codes of the contract.
@@ -63,6 +195,9 @@ pub fn run(cli: Cli) -> i32 {
             csv,
             quiet,
         } => solve(scene, json, obj, csv, quiet),
+        Command::Gridshell {
+            shape: GridshellCommand::Hemisphere(args),
+        } => hemisphere(args),
     }
 }
 
@@ -144,6 +279,180 @@ fn solve(
     if r.converged {
         EXIT_OK
     } else {
+        EXIT_NOT_CONVERGED
+    }
+}
+
+/// Checks the numbers clap cannot check by type.
+fn hemisphere_spec(a: &HemisphereArgs) -> Result<HemisphereSpec, String> {
+    let positive = |x: f64| x.is_finite() && x > 0.0;
+    if !positive(a.radius) {
+        return Err(format!(
+            "--radius must be positive and finite, got {}",
+            a.radius
+        ));
+    }
+    if !(1..=MAX_RODS).contains(&a.rods) {
+        return Err(format!("--rods must be in 1..={MAX_RODS}, got {}", a.rods));
+    }
+    if a.subdivide == 0 {
+        return Err("--subdivide must be at least 1".into());
+    }
+    if !positive(a.young_modulus) {
+        return Err(format!(
+            "--young-modulus must be positive and finite, got {}",
+            a.young_modulus
+        ));
+    }
+    if !(a.poisson_ratio.is_finite() && a.poisson_ratio > -1.0 && a.poisson_ratio <= 0.5) {
+        return Err(format!(
+            "--poisson-ratio must lie in (-1, 0.5], got {}",
+            a.poisson_ratio
+        ));
+    }
+    if a.load_steps == 0 || a.load_steps > scene::validate::MAX_LOAD_STEPS {
+        return Err(format!(
+            "--load-steps must be in 1..={}",
+            scene::validate::MAX_LOAD_STEPS
+        ));
+    }
+    if !positive(a.tolerance) {
+        return Err(format!("--tolerance must be positive, got {}", a.tolerance));
+    }
+    if !(a.start_cap == 0.0 || (a.start_cap.is_finite() && a.start_cap > 1.0)) {
+        return Err(format!(
+            "--start-cap must be 0 (flat start) or a finite ratio above 1, got {}",
+            a.start_cap
+        ));
+    }
+    let mut spec = HemisphereSpec::new(a.radius, a.rods, a.subdivide);
+    spec.joint = match a.joint {
+        JointArg::Ball => JointChoice::Ball,
+        JointArg::Hinge => JointChoice::Hinge,
+        JointArg::Rigid => JointChoice::Rigid,
+    };
+    spec.section = a.section.scaled(a.radius);
+    spec.young_modulus = a.young_modulus;
+    spec.poisson_ratio = a.poisson_ratio;
+    spec.load_steps = a.load_steps;
+    spec.tolerance = a.tolerance;
+    Ok(spec)
+}
+
+fn hemisphere(a: HemisphereArgs) -> i32 {
+    let spec = match hemisphere_spec(&a) {
+        Ok(s) => s,
+        Err(e) => {
+            eprintln!("error: {e}");
+            return EXIT_BAD_INPUT;
+        }
+    };
+    let explicit =
+        a.json.is_some() || a.obj.is_some() || a.report.is_some() || a.scene_out.is_some();
+    let default_dir = match (&a.out_dir, explicit) {
+        (Some(d), _) => Some(d.clone()),
+        (None, false) => Some(PathBuf::from(".")),
+        (None, true) => None,
+    };
+    let (mut json, mut obj_out, mut report) = (a.json.clone(), a.obj.clone(), a.report.clone());
+    if let Some(d) = &default_dir {
+        if let Err(e) = std::fs::create_dir_all(d) {
+            eprintln!("error: cannot create {}: {e}", d.display());
+            return EXIT_BAD_INPUT;
+        }
+        json.get_or_insert_with(|| d.join("hemisphere.json"));
+        obj_out.get_or_insert_with(|| d.join("hemisphere.obj"));
+        report.get_or_insert_with(|| d.join("hemisphere.txt"));
+    }
+    if let Some(p) = &a.scene_out {
+        let fp = footprint::footprint(&spec);
+        if let Err(e) = scene::validate::validate(&fp.scene) {
+            eprintln!(
+                "error: the generated scene is invalid: {}: {}",
+                e.path(),
+                e.message
+            );
+            return EXIT_BAD_INPUT;
+        }
+        let text = format!(
+            "// Hemispherical Chebyshev-net gridshell footprint, written by `rodnet gridshell hemisphere`:\n\
+             // R = {} m, {} rods per family, subdivide {}, {} joints. The rods lie flat in z = 0 and\n\
+             // `move_to` brings each rod end onto the equator. The scene is symmetric under z -> -z:\n\
+             // the dome and its mirror image solve it equally. `rodnet gridshell hemisphere` selects\n\
+             // the dome by starting from the footprint bent onto a shallow cap (docs/gridshell.md).\n{}\n",
+            spec.radius,
+            spec.rods,
+            spec.subdivide,
+            spec.joint.name(),
+            footprint::to_ron(&fp.scene)
+        );
+        if let Err(e) = atomic::write(p, text.as_bytes()) {
+            eprintln!("error: cannot write {}: {e}", p.display());
+            return EXIT_BAD_INPUT;
+        }
+    }
+    if json.is_none() && obj_out.is_none() && report.is_none() {
+        return EXIT_OK;
+    }
+
+    let progress = show_progress(a.quiet);
+    let run = match gridshell_job::run(
+        &spec,
+        a.start_cap,
+        progress.then_some(progress_line as fn(_, _, _, _)),
+    ) {
+        Ok(r) => r,
+        Err(e) => {
+            eprintln!(
+                "error: the generated scene is invalid: {}: {}",
+                e.path(),
+                e.message
+            );
+            return EXIT_BAD_INPUT;
+        }
+    };
+    if progress {
+        eprintln!();
+    }
+    let r = &run.results;
+    if !r.all_finite() {
+        eprintln!(
+            "error: the form finding produced non-finite values ({}); no results written",
+            r.solver
+                .message
+                .as_deref()
+                .unwrap_or("no further diagnostic")
+        );
+        return EXIT_NOT_CONVERGED;
+    }
+    let summary = run.summary();
+    let mut outputs: Vec<(PathBuf, Vec<u8>)> = Vec::new();
+    if let Some(p) = json {
+        outputs.push((p, run.to_json()));
+    }
+    if let Some(p) = obj_out {
+        outputs.push((p, obj::to_obj(r).into_bytes()));
+    }
+    if let Some(p) = report {
+        outputs.push((p, summary.clone().into_bytes()));
+    }
+    for (p, bytes) in outputs {
+        if let Err(e) = atomic::write(&p, &bytes) {
+            eprintln!("error: cannot write {}: {e}", p.display());
+            return EXIT_BAD_INPUT;
+        }
+    }
+    print!("{summary}");
+    if r.converged {
+        EXIT_OK
+    } else {
+        eprintln!(
+            "rodnet: form finding did not converge: {}",
+            r.solver
+                .message
+                .as_deref()
+                .unwrap_or("no further diagnostic")
+        );
         EXIT_NOT_CONVERGED
     }
 }

@@ -244,3 +244,119 @@ fn contract_syntax_forms_parse() {
         .cylinder
         .is_some());
 }
+
+#[test]
+fn gridshell_hemisphere_without_output_options_writes_into_the_current_directory() {
+    let d = tmpdir("gridshell-cwd");
+    let out = rodnet()
+        .current_dir(&d)
+        .args(["gridshell", "hemisphere", "--rods", "4", "--subdivide", "2"])
+        .output()
+        .unwrap();
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let stdout = String::from_utf8_lossy(&out.stdout).into_owned();
+    assert!(stdout.contains("against the sphere"), "{stdout}");
+    assert_eq!(
+        std::fs::read_to_string(d.join("hemisphere.txt")).unwrap(),
+        stdout
+    );
+    let r: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(d.join("hemisphere.json")).unwrap()).unwrap();
+    assert_eq!(r["converged"], true);
+    assert_eq!(r["rods"].as_array().unwrap().len(), 8);
+    let t = &r["target"];
+    assert_eq!(t["shape"], "sphere");
+    for k in [
+        "max_abs_radial_deviation",
+        "rms_radial_deviation",
+        "apex_height",
+        "max_net_distance",
+        "rms_net_distance",
+    ] {
+        assert!(t[k].is_number(), "missing target.{k}");
+    }
+    assert!(t["apex_height"].as_f64().unwrap() > 0.9);
+    assert_eq!(r["gridshell"]["rods_per_family"], 4);
+    let obj = std::fs::read_to_string(d.join("hemisphere.obj")).unwrap();
+    assert_eq!(obj.lines().filter(|l| l.starts_with("o ")).count(), 8);
+    assert_eq!(obj.lines().filter(|l| l.starts_with("l ")).count(), 8);
+}
+
+#[test]
+fn gridshell_scene_out_alone_writes_only_a_valid_scene() {
+    let d = tmpdir("gridshell-scene");
+    let out = rodnet()
+        .current_dir(&d)
+        .args([
+            "gridshell",
+            "hemisphere",
+            "--rods",
+            "3",
+            "--joint",
+            "hinge",
+            "--radius",
+            "2",
+            "--scene-out",
+            "s.ron",
+        ])
+        .output()
+        .unwrap();
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let files: Vec<_> = std::fs::read_dir(&d)
+        .unwrap()
+        .map(|e| e.unwrap().file_name())
+        .collect();
+    assert_eq!(files, vec![std::ffi::OsString::from("s.ron")]);
+    let (scene, _) = rodnet::scene::load(&d.join("s.ron")).unwrap();
+    assert_eq!(scene.rods.len(), 6);
+    assert_eq!(scene.supports.len(), 12);
+    assert!(scene.supports.iter().all(|s| s.move_to.is_some()));
+    assert!(!scene.joints.is_empty());
+    assert!(scene
+        .joints
+        .iter()
+        .all(|j| j.kind == rodnet::scene::types::JointKind::Hinge));
+    assert_eq!(
+        scene.target,
+        Some(rodnet::scene::types::Target::Sphere {
+            center: [0.0; 3],
+            radius: 2.0
+        })
+    );
+}
+
+#[test]
+fn gridshell_bad_options_exit_2() {
+    for args in [
+        vec!["--rods", "0"],
+        vec!["--radius", "-1"],
+        vec!["--subdivide", "0"],
+        vec!["--section", "circle:-0.1"],
+        vec!["--section", "square:0.1"],
+        vec!["--joint", "elastic"],
+        vec!["--start-cap", "0.5"],
+    ] {
+        let out = rodnet()
+            .args([
+                "gridshell",
+                "hemisphere",
+                "--json",
+                "/nonexistent/never.json",
+            ])
+            .args(&args)
+            .output()
+            .unwrap();
+        assert_eq!(out.status.code(), Some(2), "{args:?}");
+        assert!(!String::from_utf8_lossy(&out.stderr).is_empty(), "{args:?}");
+    }
+}

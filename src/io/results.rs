@@ -67,6 +67,11 @@ pub struct TargetJson {
     pub max_abs_radial_deviation: f64,
     pub rms_radial_deviation: f64,
     pub apex_height: f64,
+    /// Gridshells only: distance of each joint to its crossing on the Chebyshev net, over R.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub max_net_distance: Option<f64>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub rms_net_distance: Option<f64>,
 }
 
 #[derive(Debug, Clone, Serialize)]
@@ -229,5 +234,7 @@ fn sphere_metrics(net: &Network, t: &Target) -> TargetJson {
         max_abs_radial_deviation: max,
         rms_radial_deviation: (sum2 / nodes.len().max(1) as f64).sqrt(),
         apex_height: apex,
+        max_net_distance: None,
+        rms_net_distance: None,
     }
 }

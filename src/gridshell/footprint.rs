@@ -1,0 +1,325 @@
+//! The flat footprint of the hemispherical Chebyshev-net gridshell as a rodnet [`Scene`].
+//!
+//! Family-u rod `j` is the net curve `v = c_j`; in the plane it lies along x at `y = c_j`, from
+//! `x = −L_j` to `x = L_j`. Family-v rod `i` is the curve `u = c_i`, along y at `x = c_i`. The
+//! plane coordinates of a footprint point are its net parameters `(u, v)`, so crossing `(i, j)`
+//! sits at `(c_i, c_j, 0)`, and every rod is as long as its net curve: the footprint is the net
+//! unrolled without stretching any rod. The crossings strictly above the equator are input
+//! vertices of both rods and are joined; each rod end is pinned and moved to its equator point.
+
+use std::collections::BTreeMap;
+
+use crate::gridshell::chebyshev::{mirror_uv, HemisphereNet};
+use crate::scene::types::{
+    Joint, JointKind, Material, Rod, Scene, Section, Solver, Support, SupportKind, Target,
+};
+
+/// Joint kinds the generator offers (Elastic joints are not in the solver yet).
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum JointChoice {
+    Ball,
+    Hinge,
+    Rigid,
+}
+
+impl JointChoice {
+    pub fn kind(self) -> JointKind {
+        match self {
+            JointChoice::Ball => JointKind::Ball,
+            JointChoice::Hinge => JointKind::Hinge,
+            JointChoice::Rigid => JointKind::Rigid,
+        }
+    }
+
+    pub fn name(self) -> &'static str {
+        match self {
+            JointChoice::Ball => "ball",
+            JointChoice::Hinge => "hinge",
+            JointChoice::Rigid => "rigid",
+        }
+    }
+}
+
+/// Everything that defines one hemispherical gridshell problem.
+#[derive(Debug, Clone, PartialEq)]
+pub struct HemisphereSpec {
+    /// Sphere radius R, m.
+    pub radius: f64,
+    /// Rods per family, n.
+    pub rods: usize,
+    /// Edges per segment between neighbouring input vertices (crossings and ends).
+    pub subdivide: usize,
+    pub joint: JointChoice,
+    /// Rod cross-section, m. Non-circular sections put their first axis (`Ellipse::a`,
+    /// `Rectangle::width`) in the footprint plane, i.e. tangent to the shell.
+    pub section: Section,
+    /// Pa.
+    pub young_modulus: f64,
+    pub poisson_ratio: f64,
+    /// Continuation steps for the boundary motion.
+    pub load_steps: usize,
+    pub tolerance: f64,
+    pub max_iterations: usize,
+}
+
+/// Radius of the default circular section relative to R (Baek et al. used slender elastomer
+/// rods; at r/R = 0.005 stretching is 4/(r/a)² ≈ 1e4–1e5 times stiffer than bending over a
+/// crossing spacing a, so the rods are practically inextensible, as Chebyshev's theorem
+/// assumes).
+pub const DEFAULT_SECTION_RATIO: f64 = 0.005;
+
+impl HemisphereSpec {
+    /// The default problem for radius `radius`, n rods per family and `subdivide` edges per
+    /// segment: Ball joints, circular rods with r/R = 0.005, E = 1 GPa, ν = 0.3. For a problem
+    /// driven only by prescribed motions the equilibrium shape does not depend on E.
+    pub fn new(radius: f64, rods: usize, subdivide: usize) -> HemisphereSpec {
+        HemisphereSpec {
+            radius,
+            rods,
+            subdivide,
+            joint: JointChoice::Ball,
+            section: Section::Circle {
+                radius: DEFAULT_SECTION_RATIO * radius,
+            },
+            young_modulus: 1e9,
+            poisson_ratio: 0.3,
+            load_steps: 8,
+            tolerance: 1e-9,
+            max_iterations: 400,
+        }
+    }
+}
+
+/// Which net crossing a joint of the scene is.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct CrossingJoint {
+    /// Family-v rod (`u = c_i`).
+    pub i: usize,
+    /// Family-u rod (`v = c_j`).
+    pub j: usize,
+}
+
+/// The generated problem: the net, the scene, and the crossing behind each joint.
+#[derive(Debug, Clone)]
+pub struct Footprint {
+    pub net: HemisphereNet,
+    pub scene: Scene,
+    /// `crossings[k]` is the crossing that `scene.joints[k]` joins.
+    pub crossings: Vec<CrossingJoint>,
+}
+
+pub const MATERIAL: &str = "rod";
+
+pub fn u_rod_name(j: usize) -> String {
+    format!("u{j}")
+}
+
+pub fn v_rod_name(i: usize) -> String {
+    format!("v{i}")
+}
+
+/// Builds the footprint scene of `spec`.
+///
+/// # Panics
+/// If `spec.rods == 0` or the radius is not positive and finite (see [`HemisphereNet::new`]).
+pub fn footprint(spec: &HemisphereSpec) -> Footprint {
+    let net = HemisphereNet::new(spec.radius, spec.rods);
+    let n = net.n;
+    let c = &net.offsets;
+    let inside = |i: usize, j: usize| net.crossing_inside(i, j);
+
+    // Input vertex of each crossing along its two rods.
+    let mut u_vertex = vec![vec![None; n]; n];
+    let mut v_vertex = vec![vec![None; n]; n];
+    let mut rods = Vec::with_capacity(2 * n);
+    let mut supports = Vec::with_capacity(4 * n);
+    for j in 0..n {
+        let l = net.half_lengths[j];
+        let mut points = vec![[-l, c[j], 0.0]];
+        for i in (0..n).filter(|&i| inside(i, j)) {
+            // A crossing above the equator lies inside the rod's span; anything else would
+            // make the rod fold back on itself.
+            assert!(c[i].abs() < l, "crossing ({i}, {j}) outside rod u{j}");
+            u_vertex[i][j] = Some(points.len());
+            points.push([c[i], c[j], 0.0]);
+        }
+        points.push([l, c[j], 0.0]);
+        let last = points.len() - 1;
+        rods.push(rod(u_rod_name(j), points, spec.subdivide, [0.0, 1.0, 0.0]));
+        supports.push(pin(u_rod_name(j), 0, net.end_point(j, false)));
+        supports.push(pin(u_rod_name(j), last, net.end_point(j, true)));
+    }
+    for i in 0..n {
+        let l = net.half_lengths[i];
+        let mut points = vec![[c[i], -l, 0.0]];
+        for j in (0..n).filter(|&j| inside(i, j)) {
+            assert!(c[j].abs() < l, "crossing ({i}, {j}) outside rod v{i}");
+            v_vertex[i][j] = Some(points.len());
+            points.push([c[i], c[j], 0.0]);
+        }
+        points.push([c[i], l, 0.0]);
+        let last = points.len() - 1;
+        rods.push(rod(v_rod_name(i), points, spec.subdivide, [1.0, 0.0, 0.0]));
+        // Family-v rod i is the u↔v mirror of family-u rod i.
+        supports.push(pin(v_rod_name(i), 0, mirror_uv(net.end_point(i, false))));
+        supports.push(pin(v_rod_name(i), last, mirror_uv(net.end_point(i, true))));
+    }
+
+    let mut joints = Vec::new();
+    let mut crossings = Vec::new();
+    for i in 0..n {
+        for j in 0..n {
+            if let (Some(a), Some(b)) = (u_vertex[i][j], v_vertex[i][j]) {
+                joints.push(Joint {
+                    name: format!("c{i}_{j}"),
+                    at: vec![(u_rod_name(j), a), (v_rod_name(i), b)],
+                    kind: spec.joint.kind(),
+                    normal: None,
+                });
+                crossings.push(CrossingJoint { i, j });
+            }
+        }
+    }
+
+    let mut materials = BTreeMap::new();
+    materials.insert(
+        MATERIAL.to_string(),
+        Material {
+            young_modulus: spec.young_modulus,
+            poisson_ratio: Some(spec.poisson_ratio),
+            shear_modulus: None,
+            density: 0.0,
+            section: spec.section,
+        },
+    );
+    let scene = Scene {
+        materials,
+        rods,
+        joints,
+        supports,
+        loads: Vec::new(),
+        obstacles: Vec::new(),
+        target: Some(Target::Sphere {
+            center: [0.0; 3],
+            radius: spec.radius,
+        }),
+        solver: Solver {
+            tolerance: spec.tolerance,
+            max_iterations: spec.max_iterations,
+            load_steps: spec.load_steps,
+        },
+    };
+    Footprint {
+        net,
+        scene,
+        crossings,
+    }
+}
+
+fn rod(name: String, points: Vec<[f64; 3]>, subdivide: usize, normal: [f64; 3]) -> Rod {
+    Rod {
+        name,
+        material: MATERIAL.to_string(),
+        points,
+        subdivide,
+        closed: false,
+        normal: Some(normal),
+    }
+}
+
+fn pin(rod: String, vertex: usize, to: [f64; 3]) -> Support {
+    Support {
+        rod,
+        vertex,
+        kind: SupportKind::Pin,
+        move_to: Some(to),
+        rotate_by: None,
+    }
+}
+
+/// The scene as RON text that `rodnet solve` reads back (see docs/scene-format.md).
+pub fn to_ron(scene: &Scene) -> String {
+    let config = ron::ser::PrettyConfig::new()
+        .depth_limit(3)
+        .struct_names(true)
+        .separate_tuple_members(false)
+        .enumerate_arrays(false);
+    ron::ser::to_string_pretty(scene, config).expect("a scene serializes to RON")
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    fn dist(a: [f64; 3], b: [f64; 3]) -> f64 {
+        ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
+    }
+
+    fn polyline_length(p: &[[f64; 3]]) -> f64 {
+        p.windows(2).map(|w| dist(w[0], w[1])).sum()
+    }
+
+    #[test]
+    fn footprint_rods_have_their_net_lengths_and_crossings_are_one_spacing_apart() {
+        for n in [1, 2, 7, 8, 12] {
+            let fp = footprint(&HemisphereSpec::new(1.3, n, 2));
+            let net = &fp.net;
+            assert_eq!(fp.scene.rods.len(), 2 * n);
+            assert_eq!(fp.scene.supports.len(), 4 * n);
+            for (k, rod) in fp.scene.rods.iter().enumerate() {
+                let l = net.half_lengths[k % n];
+                assert!((polyline_length(&rod.points) - 2.0 * l).abs() < 1e-12);
+                let interior = &rod.points[1..rod.points.len() - 1];
+                for w in interior.windows(2) {
+                    assert!((dist(w[0], w[1]) - net.spacing).abs() < 1e-12);
+                }
+            }
+            let inside = (0..n)
+                .flat_map(|i| (0..n).map(move |j| (i, j)))
+                .filter(|&(i, j)| net.crossing_inside(i, j))
+                .count();
+            assert_eq!(fp.scene.joints.len(), inside);
+            assert_eq!(fp.crossings.len(), inside);
+            crate::scene::validate::validate(&fp.scene).unwrap();
+        }
+    }
+
+    #[test]
+    fn joints_join_coinciding_vertices_at_the_crossing_parameters() {
+        let fp = footprint(&HemisphereSpec::new(1.0, 12, 1));
+        let rod = |name: &str| fp.scene.rods.iter().find(|r| r.name == name).unwrap();
+        for (joint, cj) in fp.scene.joints.iter().zip(&fp.crossings) {
+            let want = [fp.net.offsets[cj.i], fp.net.offsets[cj.j], 0.0];
+            for (r, v) in &joint.at {
+                assert_eq!(rod(r).points[*v], want, "{}", joint.name);
+            }
+        }
+        // n = 12 has 112 crossings above the equator (see the net's documentation).
+        assert_eq!(fp.scene.joints.len(), 112);
+    }
+
+    #[test]
+    fn every_rod_end_moves_to_the_equator_at_its_own_net_end() {
+        let fp = footprint(&HemisphereSpec::new(2.0, 9, 1));
+        for s in &fp.scene.supports {
+            let to = s.move_to.unwrap();
+            assert_eq!(to[2], 0.0);
+            assert!((dist(to, [0.0; 3]) - 2.0).abs() < 1e-13);
+            let rod = fp.scene.rods.iter().find(|r| r.name == s.rod).unwrap();
+            let from = rod.points[s.vertex];
+            // The end keeps its net parameters: (±L, c) for family u, (c, ±L) for family v.
+            let expect = fp.net.point(from[0], from[1]);
+            assert!(dist(to, expect) < 1e-12, "{} {:?}", s.rod, to);
+        }
+    }
+
+    #[test]
+    fn ron_round_trip_preserves_the_scene() {
+        let mut spec = HemisphereSpec::new(1.0, 4, 3);
+        spec.joint = JointChoice::Hinge;
+        let fp = footprint(&spec);
+        let text = to_ron(&fp.scene);
+        let back = crate::scene::parse("footprint.ron", &text).unwrap();
+        assert_eq!(back, fp.scene);
+    }
+}
