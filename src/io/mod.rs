@@ -3,4 +3,5 @@ pub mod atomic;
 pub mod csv;
 pub mod obj;
 pub mod results;
+pub mod rod_energy;
 pub mod stress;
