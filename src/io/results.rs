@@ -117,11 +117,13 @@ impl Results {
             hess: None,
         });
         let energies = rod_energy::per_rod(net);
+        let bending = crate::io::stress::all_vertex_bending(net);
         let rods = net
             .rods
             .iter()
             .zip(energies)
-            .map(|(r, energy)| {
+            .zip(bending)
+            .map(|((r, energy), bend)| {
                 let points: Vec<[f64; 3]> = r.nodes.iter().map(|&n| node_pos(q, n)).collect();
                 let twist = r.edges.iter().map(|&e| q[3 * net.n_nodes + e]).collect();
                 let length = r
@@ -132,10 +134,7 @@ impl Results {
                         norm(sub(node_pos(q, b), node_pos(q, a)))
                     })
                     .sum();
-                let bending_stress: Vec<f64> = crate::io::stress::vertex_bending(net, r)
-                    .iter()
-                    .map(|b| b.2)
-                    .collect();
+                let bending_stress: Vec<f64> = bend.iter().map(|b| b.2).collect();
                 RodJson {
                     name: r.name.clone(),
                     points,
