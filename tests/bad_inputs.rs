@@ -2,7 +2,7 @@
 //! panic, and write nothing. The scene corpus is `tests/bad_scenes/*.ron`, listed with the
 //! expected line and message fragment in `tests/bad_scenes/expected.txt`.
 
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
 fn rodnet() -> Command {
@@ -123,6 +123,63 @@ fn unreadable_paths_are_named() {
     assert!(msg.contains("above the limit"), "{msg}");
 }
 
+const GOOD: &str = "networks/cantilever.ron";
+
+#[test]
+fn bad_output_paths_are_refused_before_solving() {
+    let d = tmpdir("outputs");
+    let cases: Vec<(Vec<String>, &str)> = vec![
+        (
+            vec![
+                "--json".into(),
+                d.join("nodir/r.json").display().to_string(),
+            ],
+            "does not exist",
+        ),
+        (
+            vec!["--json".into(), d.display().to_string()],
+            "is a directory",
+        ),
+        (vec!["--json".into(), GOOD.into()], "is an input file"),
+        (
+            vec![
+                "--json".into(),
+                d.join("same").display().to_string(),
+                "--obj".into(),
+                d.join("same").display().to_string(),
+            ],
+            "same file as --json",
+        ),
+    ];
+    for (args, needle) in cases {
+        let out = rodnet()
+            .args(["solve", GOOD, "--quiet"])
+            .args(&args)
+            .output()
+            .unwrap();
+        let msg = assert_bad(needle, &out);
+        assert!(msg.contains(needle), "{msg}");
+        assert!(out.stdout.is_empty(), "solved anyway: {args:?}");
+    }
+    assert!(!d.join("same").exists());
+    let before = std::fs::read(GOOD).unwrap();
+    assert_eq!(before, std::fs::read(GOOD).unwrap());
+}
+
+#[test]
+fn usage_errors_exit_2() {
+    for args in [
+        vec!["solve"],
+        vec!["solve", GOOD, "--network", "networks/vault.obj"],
+        vec!["solve", GOOD, "--radius", "0.1"],
+        vec!["frobnicate"],
+    ] {
+        let out = rodnet().args(&args).output().unwrap();
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {}", stderr(&out));
+        assert!(!stderr(&out).contains("panicked"));
+    }
+}
+
 #[test]
 fn self_equilibrated_loads_on_a_free_rod_are_accepted() {
     // The check for unsupported loads looks at the net force and moment, not at supports alone.
@@ -136,4 +193,151 @@ fn self_equilibrated_loads_on_a_free_rod_are_accepted() {
     let e = rodnet::scene::parse("free.ron", &pulled_sideways).unwrap_err();
     assert!(e.message.contains("has a support"), "{e}");
     assert_eq!(e.line, Some(4));
+}
+
+#[test]
+fn a_diverging_solve_names_the_load_step_and_residual() {
+    let d = tmpdir("diverge");
+    let p = d.join("hard.ron");
+    // One Newton iteration cannot carry a cantilever to a tip load of 100 EI/L².
+    let text = std::fs::read_to_string(GOOD)
+        .unwrap()
+        .replace("-1.5707963267948966", "-78.5")
+        .replace(
+            "max_iterations: 200, load_steps: 1",
+            "max_iterations: 1, load_steps: 3",
+        );
+    assert!(text.contains("-78.5") && text.contains("load_steps: 3"));
+    std::fs::write(&p, text).unwrap();
+    let json = d.join("r.json");
+    let out = rodnet()
+        .arg("solve")
+        .arg(&p)
+        .arg("--json")
+        .arg(&json)
+        .output()
+        .unwrap();
+    let err = stderr(&out);
+    assert_eq!(out.status.code(), Some(1), "{err}");
+    assert!(!err.contains("panicked"), "{err}");
+    assert!(
+        err.contains("stopped at load step 1/3")
+            && err.contains("largest relative residual in load step 1/3"),
+        "{err}"
+    );
+    let r: serde_json::Value = serde_json::from_slice(&std::fs::read(&json).unwrap()).unwrap();
+    assert_eq!(r["converged"], false);
+}
+
+fn write(d: &Path, name: &str, text: &str) -> PathBuf {
+    let p = d.join(name);
+    std::fs::write(&p, text).unwrap();
+    p
+}
+
+#[test]
+fn bad_networks_give_located_messages() {
+    let d = tmpdir("networks");
+    let material = [
+        "--young-modulus",
+        "1e9",
+        "--poisson-ratio",
+        "0.3",
+        "--radius",
+        "0.01",
+    ];
+    let good = "o a\nv 0 0 0\nv 1 0 0\nv 2 0 1\nl 1 2 3\n";
+    let cases: Vec<(&str, String, Vec<&str>, &str)> = vec![
+        (
+            "short_vertex",
+            good.replace("v 1 0 0", "v 1 0"),
+            vec![],
+            ":3: `v` needs x, y and z",
+        ),
+        (
+            "index_out_of_range",
+            good.replace("l 1 2 3", "l 1 2 4"),
+            vec![],
+            ":5: vertex index 4 is out of range",
+        ),
+        (
+            "zero_length",
+            good.replace("v 2 0 1", "v 1 0 0"),
+            vec![],
+            ":5: points 2 and 3 of this polyline",
+        ),
+        (
+            "no_polylines",
+            good.replace("l 1 2 3", "f 1 2 3"),
+            vec![],
+            "no `l` polylines",
+        ),
+        (
+            "fold_back",
+            good.replace("v 2 0 1", "v 0.5 0 0"),
+            vec![],
+            ":5: polyline (rod \"a\"): points: the rod folds back",
+        ),
+        (
+            "nothing_below",
+            good.to_string(),
+            vec!["--pin-below", "-1"],
+            "no polyline vertex lies at or below z = -1",
+        ),
+        (
+            "unknown_group",
+            good.to_string(),
+            vec!["--pin-group", "feet"],
+            "no `o` or `g` of that name",
+        ),
+        (
+            "bad_modulus",
+            good.to_string(),
+            vec!["--shear-modulus", "-3"],
+            "--shear-modulus: give exactly one",
+        ),
+        (
+            "unsupported_weight",
+            good.to_string(),
+            vec!["--density", "1000", "--gravity", "9.81"],
+            "is loaded but neither it nor any rod joined to it has a support",
+        ),
+        (
+            "gravity_without_density",
+            good.to_string(),
+            vec!["--gravity", "9.81", "--pin-below", "0"],
+            "--gravity needs --density",
+        ),
+        (
+            "hinge_in_line",
+            "o a\nv 0 0 0\nv 1 0 0\nl 1 2\no b\nv 1 0 0\nv 2 0 0\nl 3 4\n".into(),
+            vec!["--joint", "hinge", "--pin-below", "0"],
+            ":3: joint \"v2\" at this vertex: normal: hinge axis undefined",
+        ),
+    ];
+    for (name, text, extra, needle) in cases {
+        let p = write(&d, &format!("{name}.obj"), &text);
+        let json = d.join(format!("{name}.json"));
+        let out = rodnet()
+            .args(["solve", "--quiet", "--network"])
+            .arg(&p)
+            .args(material)
+            .args(&extra)
+            .arg("--json")
+            .arg(&json)
+            .output()
+            .unwrap();
+        let msg = assert_bad(name, &out);
+        assert!(
+            msg.contains(needle),
+            "{name}: message lacks {needle:?}: {msg}"
+        );
+        if needle.starts_with(':') {
+            assert!(
+                msg.contains(&format!("{name}.obj{}", &needle[..3])),
+                "{name}: not located: {msg}"
+            );
+        }
+        assert!(!json.exists(), "{name}: results written for bad input");
+    }
 }

@@ -2,6 +2,7 @@
 pub mod atomic;
 pub mod csv;
 pub mod obj;
+pub mod obj_import;
 pub mod results;
 pub mod rod_energy;
 pub mod stress;
