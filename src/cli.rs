@@ -1,6 +1,7 @@
 //! The `rodnet` command line (see docs/cli.md and ../shared/contract.md).
 
 mod network;
+mod plot;
 pub mod progress;
 
 use std::io::IsTerminal;
@@ -13,6 +14,7 @@ use crate::job;
 use crate::scene::{self, FieldError, Scene, SceneError};
 
 pub use network::{JointArg, NetworkArgs};
+pub use plot::PlotArgs;
 
 #[derive(Parser, Debug)]
 #[command(
@@ -49,6 +51,8 @@ pub enum Command {
         #[command(flatten)]
         network: NetworkArgs,
     },
+    /// Draw a results JSON as a PNG: orthographic views, rods coloured by bending stress.
+    Plot(PlotArgs),
 }
 
 /// Exit codes of the contract.
@@ -85,6 +89,7 @@ pub fn run(cli: Cli) -> i32 {
                 (None, None) => EXIT_BAD_INPUT,
             }
         }
+        Command::Plot(args) => plot::run(&args),
     }
 }
 

@@ -3,6 +3,7 @@ pub mod atomic;
 pub mod csv;
 pub mod obj;
 pub mod obj_import;
+pub mod plot;
 pub mod results;
 pub mod rod_energy;
 pub mod stress;
