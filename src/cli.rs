@@ -1,9 +1,13 @@
 //! The `rodnet` command line (see docs/cli.md and ../shared/contract.md).
 
-use std::io::IsTerminal;
-use std::path::PathBuf;
+mod network;
+mod plot;
+pub mod progress;
 
-use clap::{Args, Parser, Subcommand, ValueEnum};
+use std::io::IsTerminal;
+use std::path::{Path, PathBuf};
+
+use clap::{Args, Parser, Subcommand};
 
 use crate::gridshell::footprint::{self, HemisphereSpec, JointChoice};
 use crate::gridshell::formfind::DEFAULT_START_CAP;
@@ -11,7 +15,10 @@ use crate::gridshell::job as gridshell_job;
 use crate::io::{atomic, csv, obj};
 use crate::job;
 use crate::scene::types::Section;
-use crate::scene::{self, SceneError};
+use crate::scene::{self, FieldError, Scene, SceneError};
+
+pub use network::{JointArg, NetworkArgs};
+pub use plot::PlotArgs;
 
 #[derive(Parser, Debug)]
 #[command(
@@ -24,12 +31,15 @@ pub struct Cli {
     pub command: Command,
 }
 
+// Parsed once per process, so the size of the `Solve` variant's options does not matter.
+#[allow(clippy::large_enum_variant)]
 #[derive(Subcommand, Debug)]
 pub enum Command {
-    /// Solve a scene for its static equilibrium.
+    /// Solve a scene (or an OBJ network, with --network) for its static equilibrium.
     Solve {
         /// Scene file (RON).
-        scene: PathBuf,
+        #[arg(required_unless_present = "network")]
+        scene: Option<PathBuf>,
         /// Write the results JSON here.
         #[arg(long)]
         json: Option<PathBuf>,
@@ -42,7 +52,11 @@ pub enum Command {
         /// No progress output.
         #[arg(long)]
         quiet: bool,
+        #[command(flatten)]
+        network: NetworkArgs,
     },
+    /// Draw a results JSON as a PNG: orthographic views, rods coloured by bending stress.
+    Plot(PlotArgs),
     /// Elastic gridshells: generate, form-find and compare with the analytic shape.
     Gridshell {
         #[command(subcommand)]
@@ -57,13 +71,6 @@ pub enum GridshellCommand {
     /// sphere and the net. With no output options it writes hemisphere.json, hemisphere.obj and
     /// hemisphere.txt into the current directory (or --out-dir).
     Hemisphere(HemisphereArgs),
-}
-
-#[derive(ValueEnum, Debug, Clone, Copy, PartialEq, Eq)]
-pub enum JointArg {
-    Ball,
-    Hinge,
-    Rigid,
 }
 
 /// Default rods per family of the gridshell job.
@@ -182,10 +189,6 @@ pub fn show_progress(quiet: bool) -> bool {
     !quiet && std::io::stderr().is_terminal()
 }
 
-fn progress_line(step: usize, it: usize, res: f64, e: f64) {
-    eprint!("\r  load step {step:>4}  iteration {it:>4}  residual {res:9.3e}  energy {e:12.6e}   ");
-}
-
 pub fn run(cli: Cli) -> i32 {
     match cli.command {
         Command::Solve {
@@ -194,47 +197,196 @@ pub fn run(cli: Cli) -> i32 {
             obj,
             csv,
             quiet,
-        } => solve(scene, json, obj, csv, quiet),
+            network,
+        } => {
+            let outputs = Outputs { json, obj, csv };
+            match (scene, &network.network) {
+                (Some(path), _) => match network.first_given() {
+                    Some(flag) => bad(format_args!(
+                        "{flag} builds a scene from --network NET.obj; it does not apply to the \
+                         scene file {} (edit the scene instead)",
+                        path.display()
+                    )),
+                    None => solve(&path, outputs, quiet),
+                },
+                (None, Some(net)) => solve_network(&net.clone(), &network, outputs, quiet),
+                // clap requires one of the two.
+                (None, None) => EXIT_BAD_INPUT,
+            }
+        }
         Command::Gridshell {
             shape: GridshellCommand::Hemisphere(args),
         } => hemisphere(args),
+        Command::Plot(args) => plot::run(&args),
     }
 }
 
-fn solve(
-    path: PathBuf,
+/// Where the scene came from, to turn errors found while building it into messages.
+enum Source {
+    Scene { file: String, src: String },
+    Network(Box<network::NetworkScene>),
+}
+
+impl Source {
+    fn describe(&self, e: &FieldError) -> String {
+        match self {
+            Source::Scene { file, src } => SceneError::from_field(file, src, e).to_string(),
+            Source::Network(n) => n.describe(e),
+        }
+    }
+}
+
+struct Outputs {
     json: Option<PathBuf>,
-    obj_out: Option<PathBuf>,
-    csv_out: Option<PathBuf>,
-    quiet: bool,
-) -> i32 {
-    let (sc, src) = match scene::load(&path) {
-        Ok(s) => s,
-        Err(e) => {
-            eprintln!("error: {e}");
-            return EXIT_BAD_INPUT;
-        }
-    };
-    let progress = show_progress(quiet);
-    let mut settings = job::settings_of(&sc);
-    if progress {
-        settings.progress = Some(progress_line);
+    obj: Option<PathBuf>,
+    csv: Option<PathBuf>,
+}
+
+impl Outputs {
+    fn list(&self) -> Vec<(&'static str, &Path)> {
+        [
+            ("--json", &self.json),
+            ("--obj", &self.obj),
+            ("--csv", &self.csv),
+        ]
+        .into_iter()
+        .filter_map(|(f, p)| p.as_deref().map(|p| (f, p)))
+        .collect()
     }
-    let sol = match job::solve_scene(&sc, &settings) {
-        Ok(s) => s,
-        Err(e) => {
-            let e = SceneError::from_field(&path.display().to_string(), &src, &e);
-            eprintln!("error: {e}");
-            return EXIT_BAD_INPUT;
-        }
-    };
-    if progress {
-        eprintln!();
+}
+
+fn atomic_write(p: &Path, bytes: &[u8]) -> Result<(), String> {
+    atomic::write(p, bytes).map_err(|e| format!("cannot write {}: {e}", p.display()))
+}
+
+fn bad(msg: impl std::fmt::Display) -> i32 {
+    eprintln!("error: {msg}");
+    EXIT_BAD_INPUT
+}
+
+fn solve(path: &Path, outputs: Outputs, quiet: bool) -> i32 {
+    if let Err(e) = check_outputs(&outputs.list(), &[path]) {
+        return bad(e);
     }
+    let (sc, src) = match scene::load(path) {
+        Ok(s) => s,
+        Err(e) => return bad(e),
+    };
+    let source = Source::Scene {
+        file: path.display().to_string(),
+        src,
+    };
+    solve_and_write(&path.display().to_string(), &sc, &source, outputs, quiet)
+}
+
+fn solve_network(path: &Path, args: &NetworkArgs, outputs: Outputs, quiet: bool) -> i32 {
+    let mut all = outputs.list();
+    if let Some(p) = &args.scene_out {
+        all.push(("--scene-out", p));
+    }
+    if let Err(e) = check_outputs(&all, &[path]) {
+        return bad(e);
+    }
+    let net = match network::load(path, args) {
+        Ok(n) => n,
+        Err(e) => return bad(e),
+    };
+    if let Some(p) = &args.scene_out {
+        let command: Vec<String> = std::env::args().collect();
+        let text = match network::scene_ron(&net, &command.join(" ")) {
+            Ok(t) => t,
+            Err(e) => return bad(e),
+        };
+        if let Err(e) = atomic_write(p, text.as_bytes()) {
+            return bad(e);
+        }
+        if args.scene_only {
+            return EXIT_OK;
+        }
+    }
+    let scene = net.scene().clone();
+    let label = path.display().to_string();
+    solve_and_write(
+        &label,
+        &scene,
+        &Source::Network(Box::new(net)),
+        outputs,
+        quiet,
+    )
+}
+
+/// Refuses outputs that would certainly fail or destroy an input, before any work is done: a
+/// missing directory, a directory as file name, the same file twice, an output over an input.
+fn check_outputs(outputs: &[(&str, &Path)], inputs: &[&Path]) -> Result<(), String> {
+    let id = |p: &Path| -> Option<PathBuf> {
+        let name = p.file_name()?;
+        let dir = match p.parent().filter(|d| !d.as_os_str().is_empty()) {
+            Some(d) => d.canonicalize().ok()?,
+            None => std::env::current_dir().ok()?,
+        };
+        Some(dir.join(name))
+    };
+    let inputs: Vec<PathBuf> = inputs.iter().filter_map(|p| id(p)).collect();
+    let mut seen: Vec<(&str, PathBuf)> = Vec::new();
+    for &(flag, p) in outputs {
+        let shown = p.display();
+        if p.file_name().is_none() {
+            return Err(format!("{flag} {shown}: not a file name"));
+        }
+        if let Some(d) = p.parent().filter(|d| !d.as_os_str().is_empty()) {
+            if !d.is_dir() {
+                return Err(format!(
+                    "{flag} {shown}: directory {} does not exist",
+                    d.display()
+                ));
+            }
+        }
+        if p.is_dir() {
+            return Err(format!("{flag} {shown}: is a directory"));
+        }
+        let Some(full) = id(p) else { continue };
+        if inputs.contains(&full) {
+            return Err(format!(
+                "{flag} {shown}: is an input file; refusing to overwrite it"
+            ));
+        }
+        if let Some((other, _)) = seen.iter().find(|(_, q)| *q == full) {
+            return Err(format!("{flag} {shown}: same file as {other}"));
+        }
+        seen.push((flag, full));
+    }
+    Ok(())
+}
+
+fn solve_and_write(label: &str, sc: &Scene, source: &Source, outputs: Outputs, quiet: bool) -> i32 {
+    let mut settings = job::settings_of(sc);
+    progress::begin(settings.load_steps, show_progress(quiet));
+    settings.progress = Some(progress::hook);
+    let result = job::solve_scene(sc, &settings);
+    let seen = progress::finish();
+    let sol = match result {
+        Ok(s) => s,
+        Err(e) => return bad(source.describe(&e)),
+    };
     let r = &sol.results;
+    let steps = settings.load_steps;
+    // Where the solve was when it stopped, for failure messages.
+    let stage = || {
+        let step = seen.last.map_or(1, |s| s.step);
+        let largest = match seen.largest_in_step {
+            Some(b) => format!(
+                "; largest relative residual in load step {step}/{steps}: {:.3e} (iteration {})",
+                b.residual, b.iteration
+            ),
+            None => String::new(),
+        };
+        (step, largest)
+    };
     if !r.all_finite() {
+        let (step, largest) = stage();
         eprintln!(
-            "error: the solve produced non-finite values ({}); no results written",
+            "error: {label}: the Newton solve diverged at load step {step}/{steps} (non-finite \
+             values: {}){largest}; no results written",
             sol.report
                 .message
                 .as_deref()
@@ -242,25 +394,24 @@ fn solve(
         );
         return EXIT_NOT_CONVERGED;
     }
-    let mut outputs: Vec<(PathBuf, Vec<u8>)> = Vec::new();
-    if let Some(p) = json {
-        outputs.push((p, serde_json::to_vec_pretty(r).expect("results serialize")));
-    }
-    if let Some(p) = obj_out {
-        outputs.push((p, obj::to_obj(r).into_bytes()));
-    }
-    if let Some(p) = csv_out {
-        outputs.push((p, csv::to_csv(&sol.network, r).into_bytes()));
-    }
-    for (p, bytes) in outputs {
-        if let Err(e) = atomic::write(&p, &bytes) {
-            eprintln!("error: cannot write {}: {e}", p.display());
-            return EXIT_BAD_INPUT;
+    let mut files: Vec<(&Path, Vec<u8>)> = Vec::new();
+    if let Some(p) = &outputs.json {
+        match serde_json::to_vec_pretty(r) {
+            Ok(b) => files.push((p, b)),
+            Err(e) => return bad(format_args!("cannot encode the results as JSON: {e}")),
         }
     }
+    if let Some(p) = &outputs.obj {
+        files.push((p, obj::to_obj(r).into_bytes()));
+    }
+    if let Some(p) = &outputs.csv {
+        files.push((p, csv::to_csv(&sol.network, r).into_bytes()));
+    }
+    if let Err((p, e)) = atomic::write_all(&files) {
+        return bad(format_args!("cannot write {}: {e}", p.display()));
+    }
     println!(
-        "{}: {} in {} iterations over {} load step(s), relative residual {:.3e}, energy {:.9e} J, {:.3} s{}",
-        path.display(),
+        "{label}: {} in {} iterations over {} load step(s), relative residual {:.3e}, energy {:.9e} J, {:.3} s{}",
         if r.converged { "converged" } else { "NOT converged" },
         r.iterations,
         r.load_steps,
@@ -273,12 +424,21 @@ fn solve(
             " (unstable: the Hessian has a direction of negative curvature)"
         }
     );
-    if let Some(m) = &sol.report.message {
-        eprintln!("rodnet: {m}");
-    }
     if r.converged {
+        if let Some(m) = &sol.report.message {
+            eprintln!("rodnet: {m}");
+        }
         EXIT_OK
     } else {
+        let (step, largest) = stage();
+        eprintln!(
+            "error: {label}: the Newton solve stopped at load step {step}/{steps}: {}{largest}; \
+             results written with \"converged\": false",
+            sol.report
+                .message
+                .as_deref()
+                .unwrap_or("no further diagnostic")
+        );
         EXIT_NOT_CONVERGED
     }
 }
@@ -395,12 +555,10 @@ fn hemisphere(a: HemisphereArgs) -> i32 {
         return EXIT_OK;
     }
 
-    let progress = show_progress(a.quiet);
-    let run = match gridshell_job::run(
-        &spec,
-        a.start_cap,
-        progress.then_some(progress_line as fn(_, _, _, _)),
-    ) {
+    progress::begin(spec.load_steps, show_progress(a.quiet));
+    let result = gridshell_job::run(&spec, a.start_cap, Some(progress::hook));
+    let _ = progress::finish();
+    let run = match result {
         Ok(r) => r,
         Err(e) => {
             eprintln!(
@@ -411,9 +569,6 @@ fn hemisphere(a: HemisphereArgs) -> i32 {
             return EXIT_BAD_INPUT;
         }
     };
-    if progress {
-        eprintln!();
-    }
     let r = &run.results;
     if !r.all_finite() {
         eprintln!(

@@ -1,16 +1,15 @@
-//! CSV export: one row per node with position, the twist angle of the following edge, and the
-//! bending strain and stress at the node's extreme fibre.
+//! CSV export: one row per node with position, the twist angle of the following edge, the
+//! centreline curvature, and the bending strain and stress at the node's extreme fibre.
 
 use std::fmt::Write;
 
 use crate::io::results::Results;
-use crate::io::stress::vertex_bending;
+use crate::io::stress::all_vertex_bending;
 use crate::network::build::Network;
 
 pub fn to_csv(net: &Network, r: &Results) -> String {
     let mut s = String::from("rod,index,x,y,z,twist,curvature,bending_strain,bending_stress\n");
-    for (info, rod) in net.rods.iter().zip(&r.rods) {
-        let bend = vertex_bending(net, info);
+    for (bend, rod) in all_vertex_bending(net).iter().zip(&r.rods) {
         for (k, p) in rod.points.iter().enumerate() {
             let tw = rod
                 .twist

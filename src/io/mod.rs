@@ -2,5 +2,8 @@
 pub mod atomic;
 pub mod csv;
 pub mod obj;
+pub mod obj_import;
+pub mod plot;
 pub mod results;
+pub mod rod_energy;
 pub mod stress;

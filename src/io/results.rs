@@ -2,6 +2,7 @@
 
 use serde::Serialize;
 
+use crate::io::rod_energy::{self, RodEnergy};
 use crate::math::vec::{norm, sub};
 use crate::network::build::Network;
 use crate::network::model::{Assembly, EnergyParts};
@@ -40,8 +41,11 @@ pub struct RodJson {
     pub twist: Vec<f64>,
     /// Largest extreme-fibre bending stress over the rod's vertices, Pa.
     pub max_bending_stress: f64,
-    /// Elastic energy stored in the rod's stretching, bending and twisting terms is reported in
-    /// the global `energy` block; this is the rod's length after deformation, m.
+    /// Extreme-fibre bending stress at each node (zero at free ends), Pa.
+    pub bending_stress: Vec<f64>,
+    /// Elastic energy stored in the rod, J.
+    pub energy: RodEnergy,
+    /// The rod's length after deformation, m.
     pub length: f64,
 }
 
@@ -117,10 +121,14 @@ impl Results {
             full_grad: Some(&mut full),
             hess: None,
         });
+        let energies = rod_energy::per_rod(net);
+        let bending = crate::io::stress::all_vertex_bending(net);
         let rods = net
             .rods
             .iter()
-            .map(|r| {
+            .zip(energies)
+            .zip(bending)
+            .map(|((r, energy), bend)| {
                 let points: Vec<[f64; 3]> = r.nodes.iter().map(|&n| node_pos(q, n)).collect();
                 let twist = r.edges.iter().map(|&e| q[3 * net.n_nodes + e]).collect();
                 let length = r
@@ -131,11 +139,14 @@ impl Results {
                         norm(sub(node_pos(q, b), node_pos(q, a)))
                     })
                     .sum();
+                let bending_stress: Vec<f64> = bend.iter().map(|b| b.2).collect();
                 RodJson {
                     name: r.name.clone(),
                     points,
                     twist,
-                    max_bending_stress: crate::io::stress::max_bending_stress(net, r),
+                    max_bending_stress: bending_stress.iter().copied().fold(0.0, f64::max),
+                    bending_stress,
+                    energy,
                     length,
                 }
             })
@@ -191,20 +202,47 @@ impl Results {
         }
     }
 
-    /// Whether every number is finite (results with NaN are never written).
+    /// Whether every number is finite. JSON has no NaN (serde_json would write `null`), so
+    /// results with a non-finite number are never written.
     pub fn all_finite(&self) -> bool {
         let e = &self.energy;
-        [e.total, e.stretch, e.bend, e.twist, e.joints, e.external]
-            .iter()
-            .all(|v| v.is_finite())
+        let fin = |v: &f64| v.is_finite();
+        [
+            self.residual,
+            self.seconds,
+            e.total,
+            e.stretch,
+            e.bend,
+            e.twist,
+            e.joints,
+            e.external,
+        ]
+        .iter()
+        .all(fin)
             && self.rods.iter().all(|r| {
-                r.points.iter().flatten().all(|v| v.is_finite())
-                    && r.twist.iter().all(|v| v.is_finite())
+                let re = &r.energy;
+                r.points.iter().flatten().all(fin)
+                    && r.twist.iter().all(fin)
+                    && r.bending_stress.iter().all(fin)
+                    && [r.max_bending_stress, r.length, re.total, re.stretch]
+                        .iter()
+                        .chain(&[re.bend, re.twist])
+                        .all(fin)
             })
+            && self.joints.iter().all(|j| j.position.iter().all(fin))
             && self
                 .reactions
                 .iter()
-                .all(|r| r.force.iter().chain(&r.moment).all(|v| v.is_finite()))
+                .all(|r| r.force.iter().chain(&r.moment).all(fin))
+            && self.target.as_ref().is_none_or(|t| {
+                [
+                    t.max_abs_radial_deviation,
+                    t.rms_radial_deviation,
+                    t.apex_height,
+                ]
+                .iter()
+                .all(fin)
+            })
     }
 }
 

@@ -1,33 +1,135 @@
-//! Bending strain and stress at rod vertices from the discrete curvature: the curvature density
-//! κ/l̄ (l̄ the Voronoi length) times the extreme-fibre distance along each material axis.
+//! Bending strain and stress at rod vertices. The strain comes from the change of the material
+//! curvatures (κ1, κ2) from the rest shape, so a rod drawn curved is unstressed at rest; the
+//! curvature density is the integrated curvature over the rest Voronoi length, as in the bending
+//! energy. Vertices at a clamp or joint take their curvature from the half-stencils between the
+//! vertex frame and each incident edge (the largest side), so clamped ends are not reported as
+//! unstressed; only free ends are.
 
+use crate::energy::{frame_twist::FrameTwist, twist::Twist, Term};
 use crate::math::vec::{norm, sub};
 use crate::network::build::{Network, RodInfo};
+use crate::rod::section::Section;
 
-/// Pointwise (κ density, max fibre strain, max fibre stress) at each node of a rod.
+/// Extreme-fibre strain of a curvature change (Δκ1, Δκ2) in 1/m: the largest of
+/// Δκ1·y1 + Δκ2·y2 over the section, with y1 along m1.
+fn extreme_strain(section: &Section, dk: [f64; 2]) -> f64 {
+    match *section {
+        Section::Circle { radius } => radius * (dk[0] * dk[0] + dk[1] * dk[1]).sqrt(),
+        Section::Ellipse { a, b } => ((a * dk[0]).powi(2) + (b * dk[1]).powi(2)).sqrt(),
+        Section::Rectangle { width, height } => 0.5 * (width * dk[0].abs() + height * dk[1].abs()),
+    }
+}
+
+/// Strain of one bending stencil: the two material frames (edges, or frame and edge) enter
+/// the energy with equal weight, so their strains are combined in the root mean square.
+fn stencil_strain(section: &Section, k: [[f64; 2]; 2], rest: [[f64; 2]; 2], voronoi: f64) -> f64 {
+    let e = |j: usize| {
+        extreme_strain(
+            section,
+            [
+                (k[j][0] - rest[j][0]) / voronoi,
+                (k[j][1] - rest[j][1]) / voronoi,
+            ],
+        )
+    };
+    (0.5 * (e(0).powi(2) + e(1).powi(2))).sqrt()
+}
+
+/// Bending strain at every node of every rod, indexed like `net.rods`.
+fn strains(net: &Network) -> Vec<Vec<f64>> {
+    let m = &net.model;
+    let st = &m.state;
+    // Rod and position along it of each global edge.
+    let mut at_edge = vec![(usize::MAX, 0usize); m.edge_nodes.len()];
+    for (r, info) in net.rods.iter().enumerate() {
+        for (k, &e) in info.edges.iter().enumerate() {
+            at_edge[e] = (r, k);
+        }
+    }
+    let mut out: Vec<Vec<f64>> = net.rods.iter().map(|r| vec![0.0; r.nodes.len()]).collect();
+    let mut put = |r: usize, j: usize, v: f64| {
+        if let Some(x) = out.get_mut(r).and_then(|n| n.get_mut(j)) {
+            *x = x.max(v);
+        }
+    };
+    for b in &m.terms.bend {
+        // The stencil's vertex is where its outgoing edge starts.
+        let (r, k) = at_edge[b.edges[1]];
+        let Some(info) = net.rods.get(r) else {
+            continue;
+        };
+        let k_now = b.curvatures::<f64>(st, &Twist::reduced(&b.gather(&st.q)));
+        put(
+            r,
+            k,
+            stencil_strain(&info.section, k_now, b.rest, b.voronoi),
+        );
+    }
+    for f in &m.terms.frame_bend {
+        let (r, k) = at_edge[f.edge];
+        let Some(info) = net.rods.get(r) else {
+            continue;
+        };
+        // An incoming edge (sign −1) ends at the vertex, an outgoing one starts there.
+        let j = if f.sign < 0.0 {
+            (k + 1) % info.nodes.len()
+        } else {
+            k
+        };
+        let k_now = f.curvatures::<f64>(st, &FrameTwist::reduced(&f.gather(&st.q)));
+        put(
+            r,
+            j,
+            stencil_strain(&info.section, k_now, f.rest, f.voronoi),
+        );
+    }
+    out
+}
+
+/// Per node: (curvature of the deformed centreline 2 sin(φ/2)/l̄ in 1/m, extreme-fibre bending
+/// strain from the curvature change, bending stress in Pa).
 pub fn vertex_bending(net: &Network, rod: &RodInfo) -> Vec<(f64, f64, f64)> {
+    let index = net
+        .rods
+        .iter()
+        .position(|r| std::ptr::eq(r, rod))
+        .or_else(|| net.rods.iter().position(|r| r.name == rod.name));
+    let strain = index.map(|i| strains(net).swap_remove(i));
+    bending_with(net, rod, strain.as_deref())
+}
+
+/// [`vertex_bending`] for every rod at once (one pass over the terms).
+pub fn all_vertex_bending(net: &Network) -> Vec<Vec<(f64, f64, f64)>> {
+    let s = strains(net);
+    net.rods
+        .iter()
+        .zip(&s)
+        .map(|(rod, st)| bending_with(net, rod, Some(st)))
+        .collect()
+}
+
+fn bending_with(net: &Network, rod: &RodInfo, strain: Option<&[f64]>) -> Vec<(f64, f64, f64)> {
     let q = &net.model.state.q;
     let pos = |n: usize| [q[3 * n], q[3 * n + 1], q[3 * n + 2]];
     let np = rod.nodes.len();
-    let (h1, h2) = rod.section.half_extents();
-    let c = h1.max(h2);
     (0..np)
         .map(|j| {
+            let eps = strain.and_then(|s| s.get(j)).copied().unwrap_or(0.0);
             let has_prev = rod.closed || j > 0;
             let has_next = rod.closed || j + 1 < np;
-            if !(has_prev && has_next) {
-                return (0.0, 0.0, 0.0);
-            }
-            let a = pos(rod.nodes[(j + np - 1) % np]);
-            let b = pos(rod.nodes[j]);
-            let d = pos(rod.nodes[(j + 1) % np]);
-            let (e0, e1) = (sub(b, a), sub(d, b));
-            let (l0, l1) = (norm(e0), norm(e1));
-            let cosang = (e0[0] * e1[0] + e0[1] * e1[1] + e0[2] * e1[2]) / (l0 * l1);
-            let phi = cosang.clamp(-1.0, 1.0).acos();
-            let kappa = 2.0 * (0.5 * phi).sin() / (0.5 * (l0 + l1));
-            let strain = kappa * c;
-            (kappa, strain, strain * rod.young_modulus)
+            let kappa = if has_prev && has_next {
+                let a = pos(rod.nodes[(j + np - 1) % np]);
+                let b = pos(rod.nodes[j]);
+                let d = pos(rod.nodes[(j + 1) % np]);
+                let (e0, e1) = (sub(b, a), sub(d, b));
+                let (l0, l1) = (norm(e0), norm(e1));
+                let cosang = (e0[0] * e1[0] + e0[1] * e1[1] + e0[2] * e1[2]) / (l0 * l1);
+                let phi = cosang.clamp(-1.0, 1.0).acos();
+                2.0 * (0.5 * phi).sin() / (0.5 * (l0 + l1))
+            } else {
+                0.0
+            };
+            (kappa, eps, eps * rod.young_modulus)
         })
         .collect()
 }

@@ -173,6 +173,54 @@ pub fn locate(src: &str, section: &str, item: &Item, field: &str) -> Option<(usi
     Some(section_pos)
 }
 
+/// The first key that repeats an earlier key of the top-level map `section`, with its line and
+/// column. Deserializing into a map keeps only the last value of a repeated key, so a repeated
+/// material name would silently replace the first definition.
+pub fn duplicate_key(src: &str, section: &str) -> Option<(String, usize, usize)> {
+    let toks = tokenize(src);
+    let mut depth = 0usize;
+    let mut k = 0;
+    while k + 2 < toks.len() {
+        match &toks[k].0 {
+            Tok::Open => depth += 1,
+            Tok::Close => depth = depth.saturating_sub(1),
+            Tok::Ident(s) if depth == 1 && s == section && toks[k + 1].0 == Tok::Colon => break,
+            _ => {}
+        }
+        k += 1;
+    }
+    k += 2;
+    if k >= toks.len() || toks[k].0 != Tok::Open {
+        return None;
+    }
+    let mut seen = std::collections::HashSet::new();
+    let mut d = 0usize;
+    let mut at_start = true;
+    for (i, (t, line, col)) in toks.iter().enumerate().skip(k + 1) {
+        match t {
+            Tok::Str(key) if d == 0 && at_start => {
+                if toks.get(i + 1).map(|t| &t.0) == Some(&Tok::Colon) && !seen.insert(key.clone()) {
+                    return Some((key.clone(), *line, *col));
+                }
+                at_start = false;
+            }
+            Tok::Open => {
+                d += 1;
+                at_start = false;
+            }
+            Tok::Close => {
+                if d == 0 {
+                    return None;
+                }
+                d -= 1;
+            }
+            Tok::Comma if d == 0 => at_start = true,
+            _ => at_start = false,
+        }
+    }
+    None
+}
+
 /// Position of `field:` one level inside the element starting at token `k`.
 fn field_in(toks: &[(Tok, usize, usize)], mut k: usize, field: &str) -> Option<(usize, usize)> {
     if field.is_empty() {
@@ -226,5 +274,19 @@ mod tests {
             Some((2, 56))
         );
         assert_eq!(locate(src, "rods", &Item::Index(7), "x"), Some((3, 5)));
+    }
+
+    #[test]
+    fn finds_repeated_map_keys() {
+        let src = r#"Scene(
+    materials: {
+        "a": Material(section: Circle(radius: 0.1), tag: { "a": 1 }), // "a": in a comment
+        "b": Material(),
+        "a": Material(),
+    },
+)"#;
+        assert_eq!(duplicate_key(src, "materials"), Some(("a".into(), 5, 9)));
+        let unique = src.replace(r#""a": Material(),"#, r#""c": Material(),"#);
+        assert_eq!(duplicate_key(&unique, "materials"), None);
     }
 }

@@ -98,24 +98,110 @@ pub fn parse(file: &str, src: &str) -> Result<Scene, SceneError> {
     // variant instead.)
     let options =
         ron::Options::default().with_default_extension(ron::extensions::Extensions::IMPLICIT_SOME);
-    let scene: Scene = options.from_str(src).map_err(|e| SceneError {
-        file: file.to_string(),
-        line: Some(e.span.start.line),
-        column: Some(e.span.start.col),
-        message: e.code.to_string(),
+    let scene: Scene = options.from_str(src).map_err(|e| {
+        let (line, col) = (e.span.start.line, e.span.start.col);
+        SceneError {
+            file: file.to_string(),
+            line: Some(line),
+            column: Some(col),
+            message: syntax_message(&e.code.to_string(), src, line, col),
+        }
     })?;
+    if let Some((key, line, col)) = locate::duplicate_key(src, "materials") {
+        return Err(SceneError {
+            file: file.to_string(),
+            line: Some(line),
+            column: Some(col),
+            message: format!("materials: duplicate material name \"{key}\""),
+        });
+    }
     validate::validate(&scene).map_err(|e| SceneError::from_field(file, src, &e))?;
     Ok(scene)
+}
+
+/// The parser's message plus the text it stopped at: "Expected comma" alone does not show that
+/// the comma is missing after `2` in `subdivide: 2.5`.
+fn syntax_message(code: &str, src: &str, line: usize, col: usize) -> String {
+    let rest: String = src
+        .lines()
+        .nth(line.wrapping_sub(1))
+        .map(|l| l.chars().skip(col.saturating_sub(1)).collect())
+        .unwrap_or_default();
+    let found: String = rest
+        .trim_end()
+        .chars()
+        .take_while(|c| !matches!(c, ',' | ')' | ']' | '}'))
+        .take(24)
+        .collect();
+    // Messages that quote the offending name already say what was found.
+    if found.trim().is_empty() || code.contains('`') {
+        return code.to_string();
+    }
+    let before = src
+        .lines()
+        .nth(line - 1)
+        .and_then(|l| l.chars().nth(col.saturating_sub(2)));
+    let (found, hint) =
+        if found.starts_with(['.', 'e', 'E']) && before.is_some_and(|c| c.is_ascii_digit()) {
+            (found, " (this field takes a whole number)")
+        } else if before == Some('-') && code.contains("out of bounds") {
+            (
+                format!("-{found}"),
+                " (this field takes a non-negative whole number)",
+            )
+        } else {
+            (found, "")
+        };
+    format!("{code}, found `{}`{hint}", found.trim())
 }
 
 /// Reads, parses and validates a scene file.
 pub fn load(path: &Path) -> Result<(Scene, String), SceneError> {
     let file = path.display().to_string();
-    let src = std::fs::read_to_string(path).map_err(|e| SceneError {
-        file: file.clone(),
-        line: None,
-        column: None,
-        message: format!("cannot read scene file: {e}"),
-    })?;
+    let src = read_text(path, "scene", validate::MAX_SCENE_BYTES)?;
     Ok((parse(&file, &src)?, src))
+}
+
+/// Reads a text input file (`what` names it in errors), refusing files above `max_bytes`
+/// before reading them and locating the first byte that is not UTF-8.
+pub fn read_text(path: &Path, what: &str, max_bytes: u64) -> Result<String, SceneError> {
+    let file = path.display().to_string();
+    let fail = |line, column, message| SceneError {
+        file: file.clone(),
+        line,
+        column,
+        message,
+    };
+    let meta = std::fs::metadata(path)
+        .map_err(|e| fail(None, None, format!("cannot read {what} file: {e}")))?;
+    if meta.is_dir() {
+        return Err(fail(
+            None,
+            None,
+            format!("cannot read {what} file: it is a directory"),
+        ));
+    }
+    if meta.len() > max_bytes {
+        return Err(fail(
+            None,
+            None,
+            format!(
+                "{what} file is {} bytes, above the limit of {max_bytes} bytes (see docs/scene-format.md)",
+                meta.len()
+            ),
+        ));
+    }
+    let bytes = std::fs::read(path)
+        .map_err(|e| fail(None, None, format!("cannot read {what} file: {e}")))?;
+    String::from_utf8(bytes).map_err(|e| {
+        let good = &e.as_bytes()[..e.utf8_error().valid_up_to()];
+        let line = 1 + good.iter().filter(|&&b| b == b'\n').count();
+        let start = good.iter().rposition(|&b| b == b'\n').map_or(0, |p| p + 1);
+        let col = 1 + String::from_utf8_lossy(&good[start..]).chars().count();
+        fail(
+            Some(line),
+            Some(col),
+            format!("{what} file is not valid UTF-8 text"),
+        )
+    })
 }

@@ -10,13 +10,20 @@ use super::FieldError;
 pub const MAX_NODES: usize = 2_000_000;
 /// Largest number of load steps.
 pub const MAX_LOAD_STEPS: usize = 100_000;
+/// Largest scene file read, bytes. A scene at the node limit written out point by point is
+/// about 100 MB; anything much larger is not a scene and is refused before it is read.
+pub const MAX_SCENE_BYTES: u64 = 256 * 1024 * 1024;
+
+/// Largest magnitude of any number in a scene. The solver squares forces and stiffnesses
+/// (F², EA·ε²), which overflow above about 1e154; nothing physical comes near 1e100.
+pub const MAX_MAGNITUDE: f64 = 1e100;
 
 fn finite3(v: &[f64; 3]) -> bool {
-    v.iter().all(|x| x.is_finite())
+    v.iter().all(|x| x.is_finite() && x.abs() <= MAX_MAGNITUDE)
 }
 
 fn positive(x: f64) -> bool {
-    x.is_finite() && x > 0.0
+    x.is_finite() && x > 0.0 && x <= MAX_MAGNITUDE
 }
 
 fn dist(a: &[f64; 3], b: &[f64; 3]) -> f64 {
@@ -29,7 +36,10 @@ pub fn validate(s: &Scene) -> Result<(), FieldError> {
         if !positive(m.young_modulus) {
             return err(
                 "young_modulus",
-                format!("must be positive and finite, got {}", m.young_modulus),
+                format!(
+                    "must be positive and finite (at most {MAX_MAGNITUDE:e}), got {}",
+                    m.young_modulus
+                ),
             );
         }
         match (m.poisson_ratio, m.shear_modulus) {
@@ -54,12 +64,12 @@ pub fn validate(s: &Scene) -> Result<(), FieldError> {
                 if !positive(g) {
                     return err(
                         "shear_modulus",
-                        format!("must be positive and finite, got {g}"),
+                        format!("must be positive and finite (at most {MAX_MAGNITUDE:e}), got {g}"),
                     );
                 }
             }
         }
-        if !(m.density.is_finite() && m.density >= 0.0) {
+        if !(m.density.is_finite() && (0.0..=MAX_MAGNITUDE).contains(&m.density)) {
             return err(
                 "density",
                 format!("must be non-negative and finite, got {}", m.density),
@@ -74,13 +84,34 @@ pub fn validate(s: &Scene) -> Result<(), FieldError> {
             return err(
                 "section",
                 format!(
-                    "dimensions must be positive and finite, got {:?}",
+                    "dimensions must be positive and finite (at most {MAX_MAGNITUDE:e}), got {:?}",
                     m.section
                 ),
             );
         }
+        // Rigidities go as E·r⁴: a tiny section or modulus underflows to zero stiffness.
+        let k = m.section.stiffness(m.young_modulus, m.shear(), m.density);
+        for (what, v) in [("EA", k.ea), ("EI1", k.ei1), ("EI2", k.ei2), ("GJ", k.gj)] {
+            if !(v.is_normal() && v > 0.0 && v <= MAX_MAGNITUDE) {
+                return err(
+                    "section",
+                    format!(
+                        "with this section and modulus the rigidity {what} = {v:e} is not a \
+                         usable number (it must lie between {:e} and {MAX_MAGNITUDE:e})",
+                        f64::MIN_POSITIVE
+                    ),
+                );
+            }
+        }
     }
 
+    if s.rods.is_empty() {
+        return Err(FieldError::global(
+            "rods",
+            "",
+            "the scene has no rods; there is nothing to solve".into(),
+        ));
+    }
     let mut rods: HashMap<&str, &Rod> = HashMap::new();
     let mut total_nodes = 0usize;
     for (i, r) in s.rods.iter().enumerate() {
@@ -108,7 +139,10 @@ pub fn validate(s: &Scene) -> Result<(), FieldError> {
         if let Some(k) = r.points.iter().position(|p| !finite3(p)) {
             return err(
                 "points",
-                format!("point {k} is not finite: {:?}", r.points[k]),
+                format!(
+                    "point {k} is not finite (or above {MAX_MAGNITUDE:e} m): {:?}",
+                    r.points[k]
+                ),
             );
         }
         let m = r.points.len();
@@ -116,6 +150,16 @@ pub fn validate(s: &Scene) -> Result<(), FieldError> {
         let mut length = 0.0;
         for k in 0..segs {
             length += dist(&r.points[k], &r.points[(k + 1) % m]);
+        }
+        if r.closed && dist(&r.points[0], &r.points[m - 1]) <= 1e-12 * length {
+            return err(
+                "points",
+                format!(
+                    "the last point repeats the first; a closed rod connects point {} back to \
+                     point 0 by itself, so leave the repeated point out",
+                    m - 1
+                ),
+            );
         }
         for k in 0..segs {
             let l = dist(&r.points[k], &r.points[(k + 1) % m]);
@@ -248,7 +292,15 @@ pub fn validate(s: &Scene) -> Result<(), FieldError> {
         }
     }
 
-    let mut moved: HashMap<(&str, usize), [f64; 3]> = HashMap::new();
+    repeated_points(s, &in_joint)?;
+
+    // Joined rod vertices are one node, so supports are compared per node: one support that
+    // holds a node at rest and another that moves it cannot both hold.
+    let node_of = |rod: &str, v: usize| match in_joint.get(&(rod, v)) {
+        Some(&j) => NodeKey::Joint(j),
+        None => NodeKey::Vertex(rod.to_string(), v),
+    };
+    let mut motion: HashMap<NodeKey, (usize, Option<[f64; 3]>)> = HashMap::new();
     for (i, sp) in s.supports.iter().enumerate() {
         let err = |f: &str, msg: String| Err(FieldError::new("supports", i, f, msg));
         if let Err(m) = vertex_ok(&sp.rod, sp.vertex) {
@@ -276,14 +328,49 @@ pub fn validate(s: &Scene) -> Result<(), FieldError> {
             if !finite3(&t) {
                 return err("move_to", format!("must be finite, got {t:?}"));
             }
-            if let Some(prev) = moved.insert((sp.rod.as_str(), sp.vertex), t) {
-                if prev != t {
-                    return err("move_to", format!(
-                        "contradicts another support of vertex {} of rod \"{}\" that moves it to {prev:?}",
-                        sp.vertex, sp.rod
-                    ));
+        }
+        let node = node_of(&sp.rod, sp.vertex);
+        let where_ = match &node {
+            NodeKey::Joint(j) => format!("joint \"{}\"", s.joints[*j].name),
+            NodeKey::Vertex(..) => format!("vertex {} of rod \"{}\"", sp.vertex, sp.rod),
+        };
+        if let Some(&(k, prev)) = motion.get(&node) {
+            let field = if sp.move_to.is_some() {
+                "move_to"
+            } else {
+                "kind"
+            };
+            match (prev, sp.move_to) {
+                (Some(a), Some(b)) if a != b => {
+                    return err(
+                        field,
+                        format!(
+                            "contradicts supports[{k}], which moves {where_} to {a:?}, not {b:?}"
+                        ),
+                    )
                 }
+                (Some(a), None) => {
+                    return err(
+                        field,
+                        format!(
+                            "holds {where_} at its rest position, but supports[{k}] moves it \
+                             to {a:?}; give both the same `move_to` or drop one"
+                        ),
+                    )
+                }
+                (None, Some(b)) => {
+                    return err(
+                        field,
+                        format!(
+                            "moves {where_} to {b:?}, but supports[{k}] holds it at its rest \
+                             position; give both the same `move_to` or drop one"
+                        ),
+                    )
+                }
+                _ => {}
             }
+        } else {
+            motion.insert(node, (i, sp.move_to));
         }
     }
 
@@ -302,7 +389,10 @@ pub fn validate(s: &Scene) -> Result<(), FieldError> {
                     );
                 }
                 if !finite3(force) {
-                    return err("force", format!("must be finite, got {force:?}"));
+                    return err(
+                        "force",
+                        format!("must be finite (at most {MAX_MAGNITUDE:e} N), got {force:?}"),
+                    );
                 }
             }
             Load::Torque {
@@ -321,7 +411,10 @@ pub fn validate(s: &Scene) -> Result<(), FieldError> {
                     );
                 }
                 if !finite3(torque) {
-                    return err("torque", format!("must be finite, got {torque:?}"));
+                    return err(
+                        "torque",
+                        format!("must be finite (at most {MAX_MAGNITUDE:e} N·m), got {torque:?}"),
+                    );
                 }
             }
             Load::Gravity { g } => {
@@ -331,6 +424,8 @@ pub fn validate(s: &Scene) -> Result<(), FieldError> {
             }
         }
     }
+
+    unsupported_loads(s)?;
 
     if !s.obstacles.is_empty() {
         return Err(FieldError::global(
@@ -355,7 +450,7 @@ pub fn validate(s: &Scene) -> Result<(), FieldError> {
         return Err(FieldError::global(
             "solver",
             "tolerance",
-            format!("must be positive, got {}", sv.tolerance),
+            format!("must be positive, got {:e}", sv.tolerance),
         ));
     }
     if sv.max_iterations == 0 {
@@ -373,4 +468,184 @@ pub fn validate(s: &Scene) -> Result<(), FieldError> {
         ));
     }
     Ok(())
+}
+
+/// A node of the built network: a joint, or a rod vertex outside any joint.
+#[derive(Debug, Clone, PartialEq, Eq, Hash)]
+enum NodeKey {
+    Joint(usize),
+    Vertex(String, usize),
+}
+
+/// Two non-adjacent points of one rod at the same place would make two nodes sit on each other
+/// with nothing between them; that is only meaningful when a joint ties them together.
+fn repeated_points(s: &Scene, in_joint: &HashMap<(&str, usize), usize>) -> Result<(), FieldError> {
+    for (i, r) in s.rods.iter().enumerate() {
+        let m = r.points.len();
+        let segs = if r.closed { m } else { m - 1 };
+        let length: f64 = (0..segs)
+            .map(|k| dist(&r.points[k], &r.points[(k + 1) % m]))
+            .sum();
+        let tol = 1e-12 * length;
+        let mut order: Vec<usize> = (0..m).collect();
+        order.sort_by(|&a, &b| r.points[a][0].total_cmp(&r.points[b][0]));
+        for (oi, &a) in order.iter().enumerate() {
+            for &b in &order[oi + 1..] {
+                if r.points[b][0] - r.points[a][0] > tol {
+                    break;
+                }
+                if dist(&r.points[a], &r.points[b]) > tol {
+                    continue;
+                }
+                let (lo, hi) = (a.min(b), a.max(b));
+                let joined = match (
+                    in_joint.get(&(r.name.as_str(), lo)),
+                    in_joint.get(&(r.name.as_str(), hi)),
+                ) {
+                    (Some(x), Some(y)) => x == y,
+                    _ => false,
+                };
+                if !joined {
+                    return Err(FieldError::new(
+                        "rods",
+                        i,
+                        "points",
+                        format!(
+                            "points {lo} and {hi} are at the same place {:?}; if the rod crosses \
+                             itself there, join the two vertices with a Joint, otherwise move one",
+                            r.points[lo]
+                        ),
+                    ));
+                }
+            }
+        }
+    }
+    Ok(())
+}
+
+/// A group of joined rods with a net load and no support has no equilibrium: Newton would
+/// chase a rigid-body drift. Self-equilibrated loads (zero net force and moment) are allowed.
+fn unsupported_loads(s: &Scene) -> Result<(), FieldError> {
+    let index: HashMap<&str, usize> = s
+        .rods
+        .iter()
+        .enumerate()
+        .map(|(i, r)| (r.name.as_str(), i))
+        .collect();
+    let mut parent: Vec<usize> = (0..s.rods.len()).collect();
+    fn find(p: &mut [usize], mut i: usize) -> usize {
+        while p[i] != i {
+            p[i] = p[p[i]];
+            i = p[i];
+        }
+        i
+    }
+    for j in &s.joints {
+        let a = index[j.at[0].0.as_str()];
+        for (rod, _) in &j.at[1..] {
+            let (ra, rb) = (find(&mut parent, a), find(&mut parent, index[rod.as_str()]));
+            parent[rb] = ra;
+        }
+    }
+    let n = s.rods.len();
+    let mut supported = vec![false; n];
+    for sp in &s.supports {
+        let c = find(&mut parent, index[sp.rod.as_str()]);
+        supported[c] = true;
+    }
+    // Net force and net moment about the origin per group, with a magnitude for round-off.
+    type Net = ([f64; 3], [f64; 3], f64, Option<(usize, usize)>);
+    let mut net: Vec<Net> = vec![([0.0; 3], [0.0; 3], 0.0, None); n];
+    let point = |rod: &str, v: usize| s.rods[index[rod]].points[v];
+    for (li, l) in s.loads.iter().enumerate() {
+        match l {
+            Load::Force { rod, vertex, force } => {
+                let c = find(&mut parent, index[rod.as_str()]);
+                let p = point(rod, *vertex);
+                let e = &mut net[c];
+                let mo = cross(p, *force);
+                for k in 0..3 {
+                    e.0[k] += force[k];
+                    e.1[k] += mo[k];
+                }
+                e.2 += norm(force) * (1.0 + norm(&p));
+                e.3.get_or_insert((li, index[rod.as_str()]));
+            }
+            Load::Torque {
+                rod,
+                vertex: _,
+                torque,
+            } => {
+                let c = find(&mut parent, index[rod.as_str()]);
+                let e = &mut net[c];
+                for k in 0..3 {
+                    e.1[k] += torque[k];
+                }
+                e.2 += norm(torque);
+                e.3.get_or_insert((li, index[rod.as_str()]));
+            }
+            Load::Gravity { g } => {
+                for (ri, r) in s.rods.iter().enumerate() {
+                    let mat = &s.materials[&r.material];
+                    let m = r.points.len();
+                    let segs = if r.closed { m } else { m - 1 };
+                    let c = find(&mut parent, ri);
+                    for k in 0..segs {
+                        let (a, b) = (&r.points[k], &r.points[(k + 1) % m]);
+                        let w = mat.density * mat.section.area() * dist(a, b);
+                        if w == 0.0 {
+                            continue;
+                        }
+                        let mid = [
+                            0.5 * (a[0] + b[0]),
+                            0.5 * (a[1] + b[1]),
+                            0.5 * (a[2] + b[2]),
+                        ];
+                        let f = [w * g[0], w * g[1], w * g[2]];
+                        let mo = cross(mid, f);
+                        let e = &mut net[c];
+                        for k in 0..3 {
+                            e.0[k] += f[k];
+                            e.1[k] += mo[k];
+                        }
+                        e.2 += norm(&f) * (1.0 + norm(&mid));
+                        e.3.get_or_insert((li, ri));
+                    }
+                }
+            }
+        }
+    }
+    for ri in 0..n {
+        let c = find(&mut parent, ri);
+        if c != ri || supported[c] {
+            continue;
+        }
+        let (f, m, scale, first) = &net[c];
+        let Some((li, loaded)) = *first else { continue };
+        if norm(f) + norm(m) > 1e-9 * scale {
+            return Err(FieldError::new(
+                "loads",
+                li,
+                "",
+                format!(
+                    "rod \"{}\" is loaded but neither it nor any rod joined to it has a \
+                     support, so it has no equilibrium (net force {f:?} N); add a Support",
+                    s.rods[loaded].name
+                ),
+            ));
+        }
+    }
+    Ok(())
+}
+
+fn cross(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    [
+        a[1] * b[2] - a[2] * b[1],
+        a[2] * b[0] - a[0] * b[2],
+        a[0] * b[1] - a[1] * b[0],
+    ]
+}
+
+fn norm(a: &[f64; 3]) -> f64 {
+    (a[0] * a[0] + a[1] * a[1] + a[2] * a[2]).sqrt()
 }

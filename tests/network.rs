@@ -1,0 +1,270 @@
+//! OBJ networks drawn outside rodnet (networks/*.obj) solve through `rodnet solve --network`,
+//! the generated scene written by --scene-out solves to the same equilibrium, and the supports
+//! carry the structure's weight.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+use serde_json::Value;
+
+fn rodnet() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_rodnet"))
+}
+
+fn tmpdir(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("rodnet-net-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+fn run_ok(cmd: &mut Command) -> String {
+    let out = cmd.output().unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(0), "{err}");
+    assert!(err.is_empty(), "a quiet run printed: {err}");
+    String::from_utf8_lossy(&out.stdout).into_owned()
+}
+
+fn json(p: &Path) -> Value {
+    serde_json::from_slice(&std::fs::read(p).unwrap()).unwrap()
+}
+
+fn points(r: &Value) -> Vec<Vec<[f64; 3]>> {
+    r["rods"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|rod| {
+            rod["points"]
+                .as_array()
+                .unwrap()
+                .iter()
+                .map(|p| {
+                    let a = p.as_array().unwrap();
+                    [
+                        a[0].as_f64().unwrap(),
+                        a[1].as_f64().unwrap(),
+                        a[2].as_f64().unwrap(),
+                    ]
+                })
+                .collect()
+        })
+        .collect()
+}
+
+/// Rest length of all rods of a scene file.
+fn rest_length(scene: &Path) -> f64 {
+    let (sc, _) = rodnet::scene::load(scene).unwrap();
+    sc.rods
+        .iter()
+        .map(|r| {
+            let m = r.points.len();
+            let segs = if r.closed { m } else { m - 1 };
+            (0..segs)
+                .map(|k| {
+                    let (a, b) = (r.points[k], r.points[(k + 1) % m]);
+                    ((a[0] - b[0]).powi(2) + (a[1] - b[1]).powi(2) + (a[2] - b[2]).powi(2)).sqrt()
+                })
+                .sum::<f64>()
+        })
+        .sum()
+}
+
+/// Σ of the vertical reaction forces.
+fn vertical_reaction(r: &Value) -> f64 {
+    r["reactions"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x["force"][2].as_f64().unwrap())
+        .sum()
+}
+
+const VAULT: [&str; 18] = [
+    "--young-modulus",
+    "2.5e10",
+    "--poisson-ratio",
+    "0.3",
+    "--radius",
+    "0.004",
+    "--density",
+    "1900",
+    "--gravity",
+    "9.81",
+    "--joint",
+    "ball",
+    "--clamp-below",
+    "0",
+    "--subdivide",
+    "4",
+    "--load-steps",
+    "2",
+];
+
+#[test]
+fn drawn_vault_solves_and_its_feet_carry_its_weight() {
+    let d = tmpdir("vault");
+    let (j1, j2, scene) = (d.join("a.json"), d.join("b.json"), d.join("vault.ron"));
+    let (obj, csv) = (d.join("a.obj"), d.join("a.csv"));
+    run_ok(
+        rodnet()
+            .args(["solve", "--quiet", "--network", "networks/vault.obj"])
+            .args(VAULT)
+            .arg("--json")
+            .arg(&j1)
+            .arg("--obj")
+            .arg(&obj)
+            .arg("--csv")
+            .arg(&csv)
+            .arg("--scene-out")
+            .arg(&scene),
+    );
+    let r = json(&j1);
+    assert_eq!(r["converged"], true);
+    let names: Vec<&str> = r["rods"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x["name"].as_str().unwrap())
+        .collect();
+    assert_eq!(
+        names,
+        ["arch_1", "arch_2", "arch_3", "purlin_1", "purlin_2", "purlin_3"]
+    );
+    // Three purlins cross three arches: nine shared points, each a ball joint.
+    assert_eq!(r["joints"].as_array().unwrap().len(), 9);
+    // Six feet at z = 0, each the end of one arch: six clamps.
+    assert_eq!(r["reactions"].as_array().unwrap().len(), 6);
+    let weight = 1900.0 * std::f64::consts::PI * 0.004f64.powi(2) * 9.81 * rest_length(&scene);
+    let up = vertical_reaction(&r);
+    assert!(
+        ((up - weight) / weight).abs() < 1e-6,
+        "supports carry {up} N, the vault weighs {weight} N"
+    );
+    // The vault is symmetric about y = 0.6: the outer arches mirror each other, and the
+    // middle arch is loaded (it moved).
+    let pts = points(&r);
+    for (a, b) in pts[0].iter().zip(&pts[2]) {
+        let mirrored = [b[0], 1.2 - b[1], b[2]];
+        for k in 0..3 {
+            assert!((a[k] - mirrored[k]).abs() < 1e-9, "{a:?} vs {b:?}");
+        }
+    }
+    let crown = pts[1][pts[1].len() / 2];
+    assert!(
+        (crown[2] - 0.6).abs() > 1e-5,
+        "crown did not move: {crown:?}"
+    );
+
+    // The generated scene solves to the same equilibrium.
+    run_ok(
+        rodnet()
+            .args(["solve", "--quiet"])
+            .arg(&scene)
+            .arg("--json")
+            .arg(&j2),
+    );
+    assert_eq!(points(&r), points(&json(&j2)));
+    assert!(std::fs::read_to_string(&scene)
+        .unwrap()
+        .starts_with("// Generated by rodnet from networks/vault.obj"));
+    let csv = std::fs::read_to_string(&csv).unwrap();
+    let nodes: usize = pts.iter().map(|p| p.len()).sum();
+    assert_eq!(csv.lines().count(), nodes + 1);
+}
+
+#[test]
+fn blender_style_edges_are_chained_into_one_rod() {
+    let d = tmpdir("portal");
+    let j = d.join("p.json");
+    run_ok(
+        rodnet()
+            .args(["solve", "--quiet", "--network", "networks/portal_edges.obj"])
+            .args([
+                "--young-modulus",
+                "2.1e11",
+                "--poisson-ratio",
+                "0.3",
+                "--radius",
+                "0.01",
+                "--density",
+                "7850",
+                "--gravity",
+                "9.81",
+                "--clamp-below",
+                "0",
+                "--subdivide",
+                "8",
+            ])
+            .arg("--json")
+            .arg(&j),
+    );
+    let r = json(&j);
+    let rods = r["rods"].as_array().unwrap();
+    assert_eq!(rods.len(), 1, "six edges, one rod");
+    assert_eq!(rods[0]["name"], "Portal");
+    assert_eq!(rods[0]["points"].as_array().unwrap().len(), 6 * 8 + 1);
+    assert!(r["joints"].as_array().unwrap().is_empty());
+    let weight = 7850.0 * std::f64::consts::PI * 0.01f64.powi(2) * 9.81 * 6.0;
+    let up = vertical_reaction(&r);
+    assert!(((up - weight) / weight).abs() < 1e-6, "{up} vs {weight}");
+    // Symmetric frame: the beam's middle sags straight down.
+    let mid = &rods[0]["points"][24];
+    assert!((mid[0].as_f64().unwrap() - 1.0).abs() < 1e-9);
+    assert!(mid[2].as_f64().unwrap() < 2.0);
+
+    // With --no-chain every edge is a rod, joined rigidly where edges meet.
+    let j2 = d.join("q.json");
+    run_ok(
+        rodnet()
+            .args(["solve", "--quiet", "--network", "networks/portal_edges.obj"])
+            .args([
+                "--young-modulus",
+                "2.1e11",
+                "--poisson-ratio",
+                "0.3",
+                "--radius",
+                "0.01",
+                "--density",
+                "7850",
+                "--gravity",
+                "9.81",
+                "--clamp-below",
+                "0",
+                "--subdivide",
+                "8",
+                "--no-chain",
+                "--joint",
+                "rigid",
+            ])
+            .arg("--json")
+            .arg(&j2),
+    );
+    let r2 = json(&j2);
+    assert_eq!(r2["converged"], true);
+    assert_eq!(r2["rods"].as_array().unwrap().len(), 6);
+    assert_eq!(r2["joints"].as_array().unwrap().len(), 5);
+    let up = vertical_reaction(&r2);
+    assert!(((up - weight) / weight).abs() < 1e-6, "{up} vs {weight}");
+}
+
+#[test]
+fn scene_only_writes_the_scene_without_solving() {
+    let d = tmpdir("sceneonly");
+    let scene = d.join("s.ron");
+    let out = rodnet()
+        .args(["solve", "--network", "networks/vault.obj"])
+        .args(VAULT)
+        .arg("--scene-out")
+        .arg(&scene)
+        .arg("--scene-only")
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(0));
+    assert!(out.stdout.is_empty());
+    let (sc, _) = rodnet::scene::load(&scene).unwrap();
+    assert_eq!(sc.rods.len(), 6);
+    assert_eq!(sc.joints.len(), 9);
+    assert_eq!(sc.solver.load_steps, 2);
+}
