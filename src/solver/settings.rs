@@ -70,4 +70,19 @@ pub struct NewtonReport {
     pub residual_floor: f64,
     /// Iterations per load step.
     pub step_iterations: Vec<usize>,
+    /// The tolerance the solve used.
+    pub tolerance: f64,
+    /// Constrained problems only: the last step QP's multipliers and its cost.
+    pub constraints: Option<ConstraintReport>,
+}
+
+#[derive(Debug, Clone, Default, Serialize)]
+pub struct ConstraintReport {
+    /// Multiplier of each constraint at the last QP (N for contact and bounds).
+    pub multipliers: Vec<f64>,
+    pub qp_solves: usize,
+    /// Interior-point iterations summed over the QPs.
+    pub qp_iterations: usize,
+    /// Seconds in Clarabel (setup, updates and solves).
+    pub qp_seconds: f64,
 }
