@@ -118,6 +118,12 @@ pub struct KktJson {
     pub active_set: usize,
     pub constraints: usize,
     pub qp_solves: usize,
+    /// QPs that stopped short of full accuracy (their steps still passed the line search).
+    pub inexact_qps: usize,
+    /// QPs refined to the exact solution on their active set.
+    pub polished_qps: usize,
+    /// Newton steps that needed no QP (the unconstrained step was feasible).
+    pub steps_without_qp: usize,
     pub qp_iterations: usize,
     pub qp_seconds: f64,
 }
@@ -316,6 +322,9 @@ fn constraint_results(
         active_set: contacts.len(),
         constraints: contact.len(),
         qp_solves: cr.qp_solves,
+        steps_without_qp: cr.steps_without_qp,
+        polished_qps: cr.polished_qps,
+        inexact_qps: cr.inexact_qps,
         qp_iterations: cr.qp_iterations,
         qp_seconds: cr.qp_seconds,
     };

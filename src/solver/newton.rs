@@ -49,6 +49,7 @@ pub fn solve<P: NewtonProblem>(p: &mut P, s: &NewtonSettings) -> NewtonReport {
         chol,
         qp,
         r: vec![0.0; if m > 0 { n } else { 0 }],
+        qp_used: false,
         g: vec![0.0; n],
         d: vec![0.0; n],
         c: vec![0.0; n],
@@ -128,6 +129,9 @@ pub fn solve<P: NewtonProblem>(p: &mut P, s: &NewtonSettings) -> NewtonReport {
         st.report.constraints = Some(ConstraintReport {
             multipliers: qp.z.clone(),
             qp_solves: qp.solves,
+            steps_without_qp: qp.skipped,
+            polished_qps: qp.polished,
+            inexact_qps: qp.inexact,
             qp_iterations: qp.iterations,
             qp_seconds: qp.seconds,
         });
@@ -141,6 +145,8 @@ struct Newton {
     qp: Option<StepQp>,
     /// Scratch for the KKT stationarity residual (constrained problems only).
     r: Vec<f64>,
+    /// The current step came from the QP (some constraint would be violated without it).
+    qp_used: bool,
     g: Vec<f64>,
     d: Vec<f64>,
     c: Vec<f64>,
@@ -280,8 +286,8 @@ impl Newton {
                     self.c = gt;
                     // Only where the Hessian is positive definite (a convex model: reducing the
                     // residual approaches a minimum, not a saddle) and the residual is small.
-                    // (With constraints the plain gradient is no residual: never trusted.)
-                    let trusted = shift == 0.0 && res < 1e-4 && self.qp.is_none();
+                    // (With constraint forces the plain gradient is no residual: never trusted.)
+                    let trusted = shift == 0.0 && res < 1e-4 && !self.qp_used;
                     if trusted && res_trial < 0.9 * res && p.max_step(&self.trial) >= 1.0 {
                         p.accept(&self.trial, 1.0);
                     } else if shift > 0.0 && escapes < 8 {
@@ -333,9 +339,26 @@ impl Newton {
         let shift = self
             .factor_regularized()
             .ok_or_else(|| "Hessian could not be regularized".to_string())?;
+        for i in 0..self.d.len() {
+            self.d[i] = -self.g[i];
+        }
+        let ts = Instant::now();
+        self.chol.solve(&mut self.d);
+        self.report.factor_seconds += ts.elapsed().as_secs_f64();
         let qp = self.qp.as_mut().expect("constrained problem");
         p.constraints(&mut qp.c, &mut qp.jac);
-        qp.solve(&self.chol, &self.g, &mut self.d)?;
+        // The QP is convex: when the unconstrained minimizer of its model satisfies the
+        // linearized constraints, it is the QP's solution, with zero multipliers. Then Clarabel
+        // is not needed, and a constraint that is never active leaves every iterate exactly as
+        // without it.
+        if qp.admits(&self.d) {
+            qp.z.fill(0.0);
+            qp.skipped += 1;
+            self.qp_used = false;
+            return Ok((shift, p.relative_residual(&self.g)));
+        }
+        qp.solve(&mut self.chol, &self.g, &mut self.d)?;
+        self.qp_used = true;
         qp.stationarity(&self.g, &mut self.r);
         Ok((shift, p.relative_residual(&self.r)))
     }

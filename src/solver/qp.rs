@@ -43,16 +43,92 @@ pub struct StepQp {
     pub jac: Vec<f64>,
     /// Multipliers of the last solved QP (N for unit-gradient constraints).
     pub z: Vec<f64>,
+    /// Clarabel's slacks s = c + J d of the last QP.
+    slack: Vec<f64>,
+    /// QPs whose interior-point solution was replaced by the exact solution on its active set.
+    pub polished: usize,
     solver: Option<DefaultSolver<f64>>,
     pub solves: usize,
+    /// QPs that stopped short of full accuracy (Clarabel's AlmostSolved, InsufficientProgress,
+    /// MaxIterations).
+    pub inexact: usize,
+    /// Steps for which the QP was not needed (see `admits`).
+    pub skipped: usize,
     pub iterations: usize,
     pub seconds: f64,
 }
 
+/// Largest active set that is polished (the dense Schur complement costs a² memory and a
+/// triangular solve per active constraint).
+const POLISH_MAX_ACTIVE: usize = 2000;
+
+/// y = (A + τI) x with the matrix of `chol`'s last factorization.
+fn shifted_multiply(chol: &SparseCholesky, x: &[f64], y: &mut [f64]) {
+    let (cp, ri, pv) = (chol.col_ptr(), chol.row_idx(), chol.shifted_values());
+    y.iter_mut().for_each(|v| *v = 0.0);
+    for c in 0..x.len() {
+        for k in cp[c]..cp[c + 1] {
+            let r = ri[k];
+            y[r] += pv[k] * x[c];
+            if r != c {
+                y[c] += pv[k] * x[r];
+            }
+        }
+    }
+}
+
+/// In-place Cholesky factor (lower triangle, row-major, a × a) of a symmetric positive
+/// definite matrix given by its lower triangle; false if it is not numerically positive
+/// definite.
+fn dense_cholesky(s: &mut [f64], a: usize) -> bool {
+    for j in 0..a {
+        let mut dj = s[j * a + j];
+        for k in 0..j {
+            dj -= s[j * a + k] * s[j * a + k];
+        }
+        if dj.is_nan() || dj <= 0.0 || !dj.is_finite() {
+            return false;
+        }
+        let dj = dj.sqrt();
+        s[j * a + j] = dj;
+        for i in j + 1..a {
+            let mut v = s[i * a + j];
+            for k in 0..j {
+                v -= s[i * a + k] * s[j * a + k];
+            }
+            s[i * a + j] = v / dj;
+        }
+    }
+    true
+}
+
+/// Solves L Lᵀ x = b in place with the factor from [`dense_cholesky`].
+fn dense_cholesky_solve(l: &[f64], a: usize, b: &mut [f64]) {
+    for i in 0..a {
+        let mut v = b[i];
+        for k in 0..i {
+            v -= l[i * a + k] * b[k];
+        }
+        b[i] = v / l[i * a + i];
+    }
+    for i in (0..a).rev() {
+        let mut v = b[i];
+        for k in i + 1..a {
+            v -= l[k * a + i] * b[k];
+        }
+        b[i] = v / l[i * a + i];
+    }
+}
+
 fn settings() -> DefaultSettings<f64> {
-    // Newton converges only as far as its steps are accurate, and the stationarity residual it
-    // reports is the QP's dual residual at the last iterate: both need the QP well below the
-    // Newton tolerance (1e-9 of the force scale by default), hence 1e-12 instead of 1e-8.
+    // Newton converges only as far as its steps are accurate, and near convergence the steps
+    // and the multipliers are small against the data, which Clarabel's default tolerances
+    // (1e-8, absolute in its scaled units) do not resolve: tight gap tolerances, and a smaller
+    // static regularization than the default 1e-8 because the τ-shifted Hessian's zero modes
+    // (rigid spins, free rotations about a pin) sit at 1e-10 of its unit diagonal. Clarabel's
+    // own equilibration is off: the Jacobi scaling below already gives P a unit diagonal, and
+    // with it on, steps after a continuation predictor stopped with InsufficientProgress (seen
+    // on the lifted rod with r = 0.005, N = 40, h = 1).
     DefaultSettingsBuilder::default()
         .verbose(false)
         .presolve_enable(false)
@@ -62,6 +138,7 @@ fn settings() -> DefaultSettings<f64> {
         .tol_feas(1e-12)
         .max_iter(200)
         .static_regularization_constant(1e-11)
+        .equilibrate_enable(false)
         .build()
         .expect("valid Clarabel settings")
 }
@@ -96,9 +173,13 @@ impl StepQp {
             c: vec![0.0; m],
             jac: vec![0.0; pattern.len()],
             z: vec![0.0; m],
+            slack: vec![0.0; m],
+            polished: 0,
             pattern,
             solver: None,
             solves: 0,
+            skipped: 0,
+            inexact: 0,
             iterations: 0,
             seconds: 0.0,
         }
@@ -115,7 +196,12 @@ impl StepQp {
     /// Solves the step QP with `chol`'s last shifted matrix H + τI, gradient `g`, and the
     /// constraint values and Jacobian in `self.c`, `self.jac`. The step goes to `d`, the
     /// multipliers to `self.z`.
-    pub fn solve(&mut self, chol: &SparseCholesky, g: &[f64], d: &mut [f64]) -> Result<(), String> {
+    pub fn solve(
+        &mut self,
+        chol: &mut SparseCholesky,
+        g: &[f64],
+        d: &mut [f64],
+    ) -> Result<(), String> {
         let t0 = Instant::now();
         // Position and angle unknowns differ in stiffness by up to 1e8 (EA/l against GJ/l), more
         // than Clarabel's equilibration bounds (1e±4) can even out; in the Jacobi-scaled
@@ -181,16 +267,158 @@ impl StepQp {
             d[i] = sol.x[i] * self.scale[i];
         }
         self.z.copy_from_slice(&sol.z);
+        self.slack.copy_from_slice(&sol.s);
         self.solves += 1;
         self.iterations += its as usize;
         self.seconds += t0.elapsed().as_secs_f64();
-        if !matches!(status, SolverStatus::Solved | SolverStatus::AlmostSolved) {
+        // A QP stopped for lack of progress or iterations still usually holds a useful step;
+        // the line search judges it (descent and feasibility), so only infeasibility
+        // certificates and numerical failures are errors.
+        let usable = matches!(
+            status,
+            SolverStatus::Solved
+                | SolverStatus::AlmostSolved
+                | SolverStatus::InsufficientProgress
+                | SolverStatus::MaxIterations
+        );
+        if !usable || !d.iter().chain(&self.z).all(|v| v.is_finite()) {
             return Err(format!(
                 "the step QP was not solved (Clarabel status {status:?} after {its} iterations)"
             ));
         }
+        if !matches!(status, SolverStatus::Solved) {
+            self.inexact += 1;
+        }
+        if self.polish(chol, g, d) {
+            self.polished += 1;
+        }
         self.make_feasible(d);
         Ok(())
+    }
+
+    /// Replaces the interior-point solution by the exact solution of the equality-constrained
+    /// QP on its active set A = {j : z_j > s_j}, when that is consistent (z_A ≥ 0, the other
+    /// constraints satisfied). Interior-point steps and multipliers carry errors of the order of
+    /// the QP's tolerances relative to its data, which near convergence is most of the step;
+    /// with the exact active-set solution Newton converges quadratically and the multipliers
+    /// balance the gradient to round-off (as in OSQP's polishing). With P = H + τI factored
+    /// already, the active-set system reduces to the dense Schur complement
+    /// S = J_A P⁻¹ J_Aᵀ: S z_A = J_A P⁻¹ g − c_A, d = P⁻¹(J_Aᵀ z_A − g).
+    fn polish(&mut self, chol: &mut SparseCholesky, g: &[f64], d: &mut [f64]) -> bool {
+        let active: Vec<usize> = (0..self.m).filter(|&j| self.z[j] > self.slack[j]).collect();
+        let a = active.len();
+        if a > POLISH_MAX_ACTIVE {
+            return false;
+        }
+        let rows = self.row_ranges();
+        let n = self.n;
+        // W = P⁻¹ J_Aᵀ, column by column.
+        let mut w = vec![0.0; a * n];
+        for (i, &j) in active.iter().enumerate() {
+            let col = &mut w[i * n..(i + 1) * n];
+            for k in rows[j].clone() {
+                col[self.pattern[k].1] += self.jac[k];
+            }
+            chol.solve(col);
+        }
+        let mut u = g.to_vec();
+        chol.solve(&mut u);
+        let jrow = |j: usize, v: &[f64]| -> f64 {
+            rows[j]
+                .clone()
+                .map(|k| self.jac[k] * v[self.pattern[k].1])
+                .sum()
+        };
+        let mut schur = vec![0.0; a * a];
+        let mut z = vec![0.0; a];
+        for (r, &jr) in active.iter().enumerate() {
+            for c in 0..=r {
+                schur[r * a + c] = jrow(jr, &w[c * n..(c + 1) * n]);
+            }
+            z[r] = jrow(jr, &u) - self.c[jr];
+        }
+        if !dense_cholesky(&mut schur, a) {
+            return false;
+        }
+        dense_cholesky_solve(&schur, a, &mut z);
+        let mut dp: Vec<f64> = u.iter().map(|v| -v).collect();
+        for (i, zi) in z.iter().enumerate() {
+            for k in 0..n {
+                dp[k] += w[i * n + k] * zi;
+            }
+        }
+        // Soft modes (the τ-regularized zero modes) make P⁻¹g large against d, so d carries
+        // cancellation error; iterative refinement on the KKT residual removes it.
+        let mut rd = vec![0.0; n];
+        let mut last = f64::INFINITY;
+        for _ in 0..4 {
+            shifted_multiply(chol, &dp, &mut rd);
+            for k in 0..n {
+                rd[k] += g[k];
+            }
+            for (i, &j) in active.iter().enumerate() {
+                for k in rows[j].clone() {
+                    rd[self.pattern[k].1] -= self.jac[k] * z[i];
+                }
+            }
+            let size = rd.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+            if size.is_nan() || size >= 0.5 * last {
+                break;
+            }
+            last = size;
+            chol.solve(&mut rd);
+            let mut dz: Vec<f64> = active
+                .iter()
+                .map(|&j| jrow(j, &rd) - (self.c[j] + jrow(j, &dp)))
+                .collect();
+            dense_cholesky_solve(&schur, a, &mut dz);
+            for k in 0..n {
+                dp[k] -= rd[k];
+            }
+            for (i, dzi) in dz.iter().enumerate() {
+                z[i] += dzi;
+                for k in 0..n {
+                    dp[k] += w[i * n + k] * dzi;
+                }
+            }
+        }
+        let zmax = z.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+        if z.iter().any(|&v| v < -1e-12 * zmax) {
+            return false;
+        }
+        // Inactive constraints must hold (up to round-off of the positions).
+        let slack_tol = 1e-12 * self.c.iter().fold(1.0f64, |m, v| m.max(v.abs()));
+        let mut is_active = vec![false; self.m];
+        for &j in &active {
+            is_active[j] = true;
+        }
+        for j in 0..self.m {
+            if !is_active[j] && self.c[j] + jrow(j, &dp) < -slack_tol {
+                return false;
+            }
+        }
+        d.copy_from_slice(&dp);
+        self.z.iter_mut().for_each(|v| *v = 0.0);
+        for (i, &j) in active.iter().enumerate() {
+            self.z[j] = z[i].max(0.0);
+        }
+        true
+    }
+
+    /// Pattern entries of each constraint row (rows are contiguous in the pattern).
+    fn row_ranges(&self) -> Vec<std::ops::Range<usize>> {
+        let mut out = vec![0..0; self.m];
+        let mut start = 0;
+        while start < self.pattern.len() {
+            let row = self.pattern[start].0;
+            let mut end = start;
+            while end < self.pattern.len() && self.pattern[end].0 == row {
+                end += 1;
+            }
+            out[row] = start..end;
+            start = end;
+        }
+        out
     }
 
     /// Interior-point solutions satisfy the linearized constraints only to the QP's tolerance;
@@ -218,6 +446,15 @@ impl StepQp {
             }
             start = end;
         }
+    }
+
+    /// Whether step `d` satisfies every linearized constraint c + J d ≥ 0.
+    pub fn admits(&self, d: &[f64]) -> bool {
+        let mut lin = self.c.clone();
+        for (k, &(row, col)) in self.pattern.iter().enumerate() {
+            lin[row] += self.jac[k] * d[col];
+        }
+        lin.iter().all(|&v| v >= 0.0)
     }
 
     /// g − Jᵀz: the KKT stationarity residual with the last multipliers.

@@ -81,6 +81,12 @@ pub struct ConstraintReport {
     /// Multiplier of each constraint at the last QP (N for contact and bounds).
     pub multipliers: Vec<f64>,
     pub qp_solves: usize,
+    /// QPs that stopped short of full accuracy (their steps still pass the line search).
+    pub inexact_qps: usize,
+    /// QPs whose solution was refined to the exact one on its active set.
+    pub polished_qps: usize,
+    /// Newton steps whose unconstrained step already satisfied the linearized constraints.
+    pub steps_without_qp: usize,
     /// Interior-point iterations summed over the QPs.
     pub qp_iterations: usize,
     /// Seconds in Clarabel (setup, updates and solves).
