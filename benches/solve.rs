@@ -5,8 +5,8 @@
 //! - `inactive_bound`: the cantilever with a bound it never reaches, against the same cantilever
 //!   without it: the only extra work is checking the unconstrained step against the bound.
 //! - `with_constraints` / `constraints_removed`: each contact scene, and the same scene with its
-//!   obstacles and bounds deleted (a different equilibrium: the wire hangs, the rod stays
-//!   straight, the cantilever swings freely).
+//!   obstacles and bounds deleted (a different equilibrium: the rod stays straight, the
+//!   cantilever swings freely).
 
 use rodnet::job::{settings_of, solve_scene};
 use rodnet::scene::types::{Bound, Scene};
@@ -54,7 +54,9 @@ fn with_constraints(bencher: divan::Bencher, name: &str) {
     bencher.bench(|| run(&s));
 }
 
-#[divan::bench(args = ["lifted_wire", "rod_over_sphere", "cantilever_stop"], sample_count = 10)]
+// Not the lifted wire: without its floor it swings down to hang from the pin, and the
+// unconstrained solver stalls at 1e-7 relative residual on that 3 m, r = 1 mm wire.
+#[divan::bench(args = ["rod_over_sphere", "cantilever_stop"], sample_count = 10)]
 fn constraints_removed(bencher: divan::Bencher, name: &str) {
     let mut s = load(name);
     s.obstacles.clear();
