@@ -169,6 +169,15 @@ fn bad_contact_input_is_located() {
             "bounds[0].max",
         ),
         (
+            "equal_bounds",
+            BASE.replace(
+                "min: (None, -1.0, None)",
+                "min: (None, -1.0, None), max: (None, -1.0, None)",
+            ),
+            ":10:",
+            "must be above min",
+        ),
+        (
             "unknown_rod",
             BASE.replace("Bound(rod: \"a\"", "Bound(rod: \"b\""),
             ":10:",

@@ -261,6 +261,11 @@ impl Results {
                 .reactions
                 .iter()
                 .all(|r| r.force.iter().chain(&r.moment).all(|v| v.is_finite()))
+            && self
+                .contacts
+                .iter()
+                .flatten()
+                .all(|c| c.force.iter().all(|v| v.is_finite()) && c.gap.is_finite())
     }
 }
 

@@ -413,8 +413,13 @@ pub fn validate(s: &Scene) -> Result<(), FieldError> {
                 }
             }
             if let (Some(lo), Some(hi)) = (b.min[k], b.max[k]) {
-                if lo > hi {
-                    return err("max", format!("component {k}: max {hi} is below min {lo}"));
+                // An equal pair would be an equality with no interior, which the interior-point
+                // QP handles badly; a fixed coordinate is a support's job.
+                if lo >= hi {
+                    return err(
+                        "max",
+                        format!("component {k}: max {hi} must be above min {lo}"),
+                    );
                 }
             }
         }
