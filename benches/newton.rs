@@ -84,6 +84,7 @@ fn grid_scene(n: usize, subdivide: usize) -> Scene {
             g: [0.0, 0.0, -9.81],
         }],
         obstacles: vec![],
+        bounds: vec![],
         target: None,
         solver: Solver::default(),
     }
@@ -182,6 +183,7 @@ fn cantilever_solve(bencher: divan::Bencher, n: usize) {
             force: [0.0, -2.0, 0.0],
         }],
         obstacles: vec![],
+        bounds: vec![],
         target: None,
         solver: Solver::default(),
     };

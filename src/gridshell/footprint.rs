@@ -199,6 +199,7 @@ pub fn footprint(spec: &HemisphereSpec) -> Footprint {
         supports,
         loads: Vec::new(),
         obstacles: Vec::new(),
+        bounds: Vec::new(),
         target: Some(Target::Sphere {
             center: [0.0; 3],
             radius: spec.radius,

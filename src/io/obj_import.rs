@@ -581,6 +581,7 @@ pub fn to_scene(obj: &ObjFile, o: &NetworkOptions) -> Result<Generated, ObjError
             supports,
             loads,
             obstacles: Vec::new(),
+            bounds: Vec::new(),
             target: None,
             solver: o.solver.clone(),
         },

@@ -3,11 +3,12 @@
 use serde::Serialize;
 
 use crate::io::rod_energy::{self, RodEnergy};
-use crate::math::vec::{norm, sub};
+use crate::math::vec::{norm, scalef, sub};
 use crate::network::build::Network;
-use crate::network::model::{Assembly, EnergyParts};
+use crate::network::contact::{Contact, Source};
+use crate::network::model::{Assembly, EnergyParts, FIXED};
 use crate::scene::types::Target;
-use crate::solver::NewtonReport;
+use crate::solver::{ConstraintReport, NewtonReport};
 
 #[derive(Debug, Clone, Serialize)]
 pub struct EnergyJson {
@@ -90,6 +91,52 @@ pub struct SolverJson {
     pub message: Option<String>,
 }
 
+/// The force one active constraint (obstacle contact or coordinate bound) exerts on a node.
+#[derive(Debug, Clone, Serialize)]
+pub struct ContactJson {
+    pub rod: String,
+    /// Index of the node in the rod's `points`.
+    pub node: usize,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub obstacle: Option<usize>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub bound: Option<usize>,
+    /// N, on the rod (the multiplier times the constraint's unit gradient).
+    pub force: [f64; 3],
+    /// Distance of the rod's surface from the obstacle (of the node from the bound), m.
+    pub gap: f64,
+}
+
+/// First-order optimality (KKT) of the constrained equilibrium, with the last step QP's
+/// multipliers z and the constraints c(x) ≥ 0 at the final state.
+#[derive(Debug, Clone, Serialize)]
+pub struct KktJson {
+    /// Largest constraint violation max(0, −c), m.
+    pub primal_feasibility: f64,
+    /// The same over the length scale.
+    pub primal_feasibility_relative: f64,
+    /// Largest |z·c|, J.
+    pub complementarity: f64,
+    /// The same over force scale × length scale.
+    pub complementarity_relative: f64,
+    /// Smallest multiplier, N (non-negative at a KKT point).
+    pub min_multiplier: f64,
+    /// Largest component of ∇E − Jᵀz relative to the force (moment) scale, as `residual`.
+    pub stationarity: f64,
+    /// Constraints whose force exceeds tolerance × force scale.
+    pub active_set: usize,
+    pub constraints: usize,
+    pub qp_solves: usize,
+    /// QPs that stopped short of full accuracy (their steps still passed the line search).
+    pub inexact_qps: usize,
+    /// QPs refined to the exact solution on their active set.
+    pub polished_qps: usize,
+    /// Newton steps that needed no QP (the unconstrained step was feasible).
+    pub steps_without_qp: usize,
+    pub qp_iterations: usize,
+    pub qp_seconds: f64,
+}
+
 #[derive(Debug, Clone, Serialize)]
 pub struct Results {
     pub converged: bool,
@@ -104,6 +151,11 @@ pub struct Results {
     #[serde(skip_serializing_if = "Option::is_none")]
     pub target: Option<TargetJson>,
     pub solver: SolverJson,
+    /// Scenes with obstacles or bounds only.
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub contacts: Option<Vec<ContactJson>>,
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub kkt: Option<KktJson>,
 }
 
 fn node_pos(q: &[f64], n: usize) -> [f64; 3] {
@@ -178,6 +230,13 @@ impl Results {
             })
             .collect();
         let target = target.map(|t| sphere_metrics(net, t));
+        let (contacts, kkt) = match (&m.contact, &report.constraints) {
+            (Some(c), Some(cr)) => {
+                let (contacts, kkt) = constraint_results(net, c, cr, &grad, report.tolerance);
+                (Some(contacts), Some(kkt))
+            }
+            _ => (None, None),
+        };
         Results {
             converged: report.converged,
             iterations: report.iterations,
@@ -199,6 +258,8 @@ impl Results {
                 step_iterations: report.step_iterations.clone(),
                 message: report.message.clone(),
             },
+            contacts,
+            kkt,
         }
     }
 
@@ -243,7 +304,79 @@ impl Results {
                 .iter()
                 .all(fin)
             })
+            && self
+                .contacts
+                .iter()
+                .flatten()
+                .all(|c| c.force.iter().all(fin) && c.gap.is_finite())
     }
+}
+
+/// Active constraint forces and the KKT measures at the final state.
+fn constraint_results(
+    net: &Network,
+    contact: &Contact,
+    cr: &ConstraintReport,
+    grad: &[f64],
+    tolerance: f64,
+) -> (Vec<ContactJson>, KktJson) {
+    let m = &net.model;
+    let q = &m.state.q;
+    let z = &cr.multipliers;
+    let mut owner = vec![None; net.n_nodes];
+    for (r, rod) in net.rods.iter().enumerate() {
+        for (k, &n) in rod.nodes.iter().enumerate() {
+            owner[n].get_or_insert((r, k));
+        }
+    }
+    let (f, l) = (m.force_scale, m.length_scale);
+    let mut stationarity = grad.to_vec();
+    let mut contacts = Vec::new();
+    let (mut violation, mut compl, mut zmin): (f64, f64, f64) = (0.0, 0.0, f64::INFINITY);
+    for (j, row) in contact.rows.iter().enumerate() {
+        let (c, g) = row.at(contact, q);
+        for k in 0..3 {
+            let v = m.free[3 * row.node + k];
+            if v != FIXED {
+                stationarity[v as usize] -= z[j] * g[k];
+            }
+        }
+        violation = violation.max(-c);
+        compl = compl.max((z[j] * c).abs());
+        zmin = zmin.min(z[j]);
+        if z[j] > tolerance * f {
+            let (r, k) = owner[row.node].expect("constraint on a rod node");
+            let (obstacle, bound) = match row.source {
+                Source::Obstacle(i) => (Some(i), None),
+                Source::Bound(i) => (None, Some(i)),
+            };
+            contacts.push(ContactJson {
+                rod: net.rods[r].name.clone(),
+                node: k,
+                obstacle,
+                bound,
+                force: scalef(g, z[j]),
+                gap: c,
+            });
+        }
+    }
+    let kkt = KktJson {
+        primal_feasibility: violation,
+        primal_feasibility_relative: violation / l,
+        complementarity: compl,
+        complementarity_relative: compl / (f * l),
+        min_multiplier: if z.is_empty() { 0.0 } else { zmin },
+        stationarity: m.relative_residual(&stationarity),
+        active_set: contacts.len(),
+        constraints: contact.len(),
+        qp_solves: cr.qp_solves,
+        steps_without_qp: cr.steps_without_qp,
+        polished_qps: cr.polished_qps,
+        inexact_qps: cr.inexact_qps,
+        qp_iterations: cr.qp_iterations,
+        qp_seconds: cr.qp_seconds,
+    };
+    (contacts, kkt)
 }
 
 /// Sphere deviations over the joint positions (all rod nodes when there are no joints),

@@ -696,6 +696,7 @@ pub fn build(scene: &Scene) -> Result<Network, FieldError> {
         frame_vars,
     );
     model.prescribed_rotations = prescribed_rotations;
+    model.contact = crate::network::contact::Contact::build(scene, &rods, &model)?;
     Ok(Network {
         model,
         rods,

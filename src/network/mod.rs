@@ -1,6 +1,7 @@
 //! Networks of rods: the global state, ports (vertex frames), the DOF map and assembly, and the
 //! builder from a scene.
 pub mod build;
+pub mod contact;
 pub mod joint;
 pub mod model;
 pub mod port;

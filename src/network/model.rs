@@ -97,6 +97,8 @@ pub struct Model {
     pub force_scale: f64,
     /// First ω variable of each vertex frame.
     pub frame_vars: Vec<usize>,
+    /// Contact and bound constraints, when the scene declares any.
+    pub contact: Option<crate::network::contact::Contact>,
     slots: Slots,
     pub(crate) projector: crate::network::projection::LazyProjector,
 }
@@ -159,6 +161,7 @@ impl Model {
             length_scale,
             force_scale,
             frame_vars,
+            contact: None,
             slots: Slots::default(),
             projector: Default::default(),
         }

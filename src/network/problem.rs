@@ -20,6 +20,10 @@ impl NewtonProblem for Model {
                 self.state.q[v] += factor * (self.state.q[v] - from.q[v]);
             }
         }
+        if let Some(c) = &self.contact {
+            // The predictor must not start a sub-step inside an obstacle.
+            c.project(&mut self.state.q);
+        }
         self.commit();
     }
     fn residual_floor(&self) -> f64 {
@@ -61,6 +65,9 @@ impl NewtonProblem for Model {
             .unwrap_or_else(|| crate::network::projection::Projector::new(self));
         let r = proj.correction(self, step, c);
         self.projector.0 = Some(proj);
+        if let (true, Some(contact)) = (r, &self.contact) {
+            contact.limit_correction(&self.state.q, &self.free, step, c);
+        }
         r
     }
     fn max_step(&self, step: &[f64]) -> f64 {
@@ -99,5 +106,29 @@ impl NewtonProblem for Model {
         };
         let sa = if da > 0.0 { 1e-2 / da } else { f64::INFINITY };
         sx.min(sa)
+    }
+    fn num_constraints(&self) -> usize {
+        self.contact.as_ref().map_or(0, |c| c.len())
+    }
+    fn constraint_pattern(&self) -> Vec<(usize, usize)> {
+        self.contact
+            .as_ref()
+            .map_or_else(Vec::new, |c| c.pattern(&self.free))
+    }
+    fn constraints(&self, c: &mut [f64], jac: &mut [f64]) {
+        if let Some(contact) = &self.contact {
+            contact.values(&self.state.q, c, jac);
+        }
+    }
+    fn feasible(&mut self, step: &[f64]) -> bool {
+        let Some(contact) = self.contact.take() else {
+            return true;
+        };
+        let current = self.state.q.clone();
+        self.displace(step, 1.0);
+        let ok = contact.admits(&current, &self.state.q);
+        self.state.q = current;
+        self.contact = Some(contact);
+        ok
     }
 }

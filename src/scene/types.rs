@@ -23,6 +23,8 @@ pub struct Scene {
     #[serde(default)]
     pub obstacles: Vec<Obstacle>,
     #[serde(default)]
+    pub bounds: Vec<Bound>,
+    #[serde(default)]
     pub target: Option<Target>,
     #[serde(default)]
     pub solver: Solver,
@@ -215,8 +217,33 @@ pub enum Load {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub enum Obstacle {
+    /// Half-space: the side `normal` points to is free (m).
     Plane { point: [f64; 3], normal: [f64; 3] },
+    /// Solid ball (m).
     Sphere { center: [f64; 3], radius: f64 },
+    /// Solid infinite circular cylinder around the line through `point` along `axis` (m).
+    Cylinder {
+        point: [f64; 3],
+        axis: [f64; 3],
+        radius: f64,
+    },
+}
+
+/// Simple bounds on node coordinates (m): `min[k] <= x[k] <= max[k]` for each given component,
+/// on the centreline nodes of one rod (or of every rod), optionally only at some input vertices.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Bound {
+    /// Rod whose nodes are bounded; default every rod.
+    #[serde(default)]
+    pub rod: Option<String>,
+    /// Input vertices of `rod` (vertex k is node k·subdivide); default every node of the rod.
+    #[serde(default)]
+    pub vertices: Option<Vec<usize>>,
+    #[serde(default)]
+    pub min: [Option<f64>; 3],
+    #[serde(default)]
+    pub max: [Option<f64>; 3],
 }
 
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]

@@ -427,12 +427,103 @@ pub fn validate(s: &Scene) -> Result<(), FieldError> {
 
     unsupported_loads(s)?;
 
-    if !s.obstacles.is_empty() {
-        return Err(FieldError::global(
-            "obstacles",
-            "",
-            "contact with obstacles is not implemented yet in this version of rodnet".into(),
-        ));
+    for (i, o) in s.obstacles.iter().enumerate() {
+        let err = |f: &str, msg: String| Err(FieldError::new("obstacles", i, f, msg));
+        let nonzero = |v: &[f64; 3]| finite3(v) && v.iter().any(|x| *x != 0.0);
+        match o {
+            Obstacle::Plane { point, normal } => {
+                if !finite3(point) {
+                    return err("point", format!("must be finite, got {point:?}"));
+                }
+                if !nonzero(normal) {
+                    return err(
+                        "normal",
+                        format!("must be finite and non-zero, got {normal:?}"),
+                    );
+                }
+            }
+            Obstacle::Sphere { center, radius } => {
+                if !finite3(center) {
+                    return err("center", format!("must be finite, got {center:?}"));
+                }
+                if !positive(*radius) {
+                    return err(
+                        "radius",
+                        format!("must be positive and finite, got {radius}"),
+                    );
+                }
+            }
+            Obstacle::Cylinder {
+                point,
+                axis,
+                radius,
+            } => {
+                if !finite3(point) {
+                    return err("point", format!("must be finite, got {point:?}"));
+                }
+                if !nonzero(axis) {
+                    return err("axis", format!("must be finite and non-zero, got {axis:?}"));
+                }
+                if !positive(*radius) {
+                    return err(
+                        "radius",
+                        format!("must be positive and finite, got {radius}"),
+                    );
+                }
+            }
+        }
+    }
+
+    for (i, b) in s.bounds.iter().enumerate() {
+        let err = |f: &str, msg: String| Err(FieldError::new("bounds", i, f, msg));
+        match (&b.rod, &b.vertices) {
+            (Some(rod), vertices) => {
+                if !rods.contains_key(rod.as_str()) {
+                    return err("rod", format!("unknown rod \"{rod}\""));
+                }
+                for &v in vertices.iter().flatten() {
+                    if let Err(m) = vertex_ok(rod, v) {
+                        return err("vertices", m);
+                    }
+                }
+                if vertices.as_ref().is_some_and(|v| v.is_empty()) {
+                    return err(
+                        "vertices",
+                        "must not be empty (omit it to bound every node)".into(),
+                    );
+                }
+            }
+            (None, Some(_)) => {
+                return err(
+                    "vertices",
+                    "needs `rod` (vertices index a rod's input points)".into(),
+                )
+            }
+            (None, None) => {}
+        }
+        for k in 0..3 {
+            for (f, v) in [("min", b.min[k]), ("max", b.max[k])] {
+                if v.is_some_and(|x| !x.is_finite()) {
+                    return err(f, format!("component {k} must be finite, got {v:?}"));
+                }
+            }
+            if let (Some(lo), Some(hi)) = (b.min[k], b.max[k]) {
+                // An equal pair would be an equality with no interior, which the interior-point
+                // QP handles badly; a fixed coordinate is a support's job.
+                if lo >= hi {
+                    return err(
+                        "max",
+                        format!("component {k}: max {hi} must be above min {lo}"),
+                    );
+                }
+            }
+        }
+        if b.min.iter().chain(&b.max).all(|v| v.is_none()) {
+            return err(
+                "min",
+                "give at least one component of `min` or `max`".into(),
+            );
+        }
     }
 
     if let Some(Target::Sphere { center, radius }) = &s.target {

@@ -103,6 +103,22 @@ impl SparseCholesky {
         self.l.len()
     }
 
+    /// Column pointers of the stored upper triangle (CSC).
+    pub fn col_ptr(&self) -> &[usize] {
+        self.pattern.col_ptr()
+    }
+
+    /// Row indices of the stored upper triangle (CSC, sorted within each column).
+    pub fn row_idx(&self) -> &[usize] {
+        self.pattern.row_idx()
+    }
+
+    /// Values of A + shift·I from the last call to [`Self::factor`] (successful or not), in the
+    /// order of [`Self::row_idx`].
+    pub fn shifted_values(&self) -> &[f64] {
+        &self.shifted
+    }
+
     /// Largest absolute diagonal value.
     pub fn diagonal_scale(&self) -> f64 {
         self.diag

@@ -2,8 +2,9 @@
 pub mod linalg;
 pub mod newton;
 pub mod problem;
+pub mod qp;
 pub mod settings;
 
 pub use newton::solve;
 pub use problem::NewtonProblem;
-pub use settings::{NewtonReport, NewtonSettings};
+pub use settings::{ConstraintReport, NewtonReport, NewtonSettings};

@@ -12,7 +12,8 @@ use std::time::Instant;
 
 use super::linalg::SparseCholesky;
 use super::problem::NewtonProblem;
-use super::settings::{NewtonReport, NewtonSettings};
+use super::qp::StepQp;
+use super::settings::{ConstraintReport, NewtonReport, NewtonSettings};
 
 /// Newton iterations a continuation sub-step may take before it is retried with a smaller
 /// increment (unless the increment is already minimal).
@@ -41,8 +42,14 @@ pub fn solve<P: NewtonProblem>(p: &mut P, s: &NewtonSettings) -> NewtonReport {
     let (chol, slots) = SparseCholesky::new(n, &pairs);
     p.set_hessian_slots(&slots);
     let steps = s.load_steps.max(1);
+    // Only a problem with constraints builds a QP; without, every step is the Cholesky solve.
+    let m = p.num_constraints();
+    let qp = (m > 0).then(|| StepQp::new(n, m, p.constraint_pattern()));
     let mut st = Newton {
         chol,
+        qp,
+        r: vec![0.0; if m > 0 { n } else { 0 }],
+        qp_used: false,
         g: vec![0.0; n],
         d: vec![0.0; n],
         c: vec![0.0; n],
@@ -117,11 +124,29 @@ pub fn solve<P: NewtonProblem>(p: &mut P, s: &NewtonSettings) -> NewtonReport {
         }
     }
     st.report.seconds = t0.elapsed().as_secs_f64();
+    st.report.tolerance = s.tolerance;
+    if let Some(qp) = &st.qp {
+        st.report.constraints = Some(ConstraintReport {
+            multipliers: qp.z.clone(),
+            qp_solves: qp.solves,
+            steps_without_qp: qp.skipped,
+            polished_qps: qp.polished,
+            inexact_qps: qp.inexact,
+            qp_iterations: qp.iterations,
+            qp_seconds: qp.seconds,
+        });
+    }
     st.report
 }
 
 struct Newton {
     chol: SparseCholesky,
+    /// The step QP, only for problems with constraints.
+    qp: Option<StepQp>,
+    /// Scratch for the KKT stationarity residual (constrained problems only).
+    r: Vec<f64>,
+    /// The current step came from the QP (some constraint would be violated without it).
+    qp_used: bool,
     g: Vec<f64>,
     d: Vec<f64>,
     c: Vec<f64>,
@@ -147,13 +172,30 @@ impl Newton {
         let mut last_res = f64::INFINITY;
         loop {
             let e0 = p.assemble(&mut self.g, Some(&mut self.chol.values));
-            let res = p.relative_residual(&self.g);
+            let mut res = p.relative_residual(&self.g);
             self.report.residual = res;
             self.report.energy = e0;
             if !e0.is_finite() || !res.is_finite() {
                 return Outcome::Failed(format!(
                     "non-finite energy or residual at load step {step}/{steps}, iteration {it}"
                 ));
+            }
+            // With constraints the step, and with it the multipliers, comes first: convergence
+            // is judged on the KKT stationarity residual g − Jᵀz, not on g.
+            let mut qp_shift = None;
+            if self.qp.is_some() {
+                match self.constrained_step(p) {
+                    Ok((shift, r)) => {
+                        qp_shift = Some(shift);
+                        res = r;
+                        self.report.residual = res;
+                    }
+                    Err(msg) => {
+                        return Outcome::Failed(format!(
+                            "{msg} at load step {step}/{steps}, iteration {it}"
+                        ))
+                    }
+                }
             }
             if let Some(cb) = s.progress {
                 cb(step, self.report.iterations, res, e0);
@@ -165,7 +207,7 @@ impl Newton {
             let stalled = res >= 0.5 * last_res;
             last_res = res;
             if res < s.tolerance || (res < floor && stalled) {
-                let Some(shift) = self.factor_regularized() else {
+                let Some(shift) = qp_shift.or_else(|| self.factor_regularized()) else {
                     return Outcome::Failed(format!(
                         "Hessian could not be regularized at load step {step}/{steps} (residual {res:.3e})"
                     ));
@@ -201,7 +243,7 @@ impl Newton {
                     s.tolerance
                 ));
             }
-            let Some(shift) = self.factor_regularized() else {
+            let Some(shift) = qp_shift.or_else(|| self.factor_regularized()) else {
                 return Outcome::Failed(format!(
                     "Hessian could not be regularized at load step {step}/{steps}, iteration {it} \
                      (residual {res:.3e})"
@@ -210,12 +252,14 @@ impl Newton {
             if shift > 0.0 {
                 self.report.regularized_iterations += 1;
             }
-            for i in 0..n {
-                self.d[i] = -self.g[i];
+            if qp_shift.is_none() {
+                for i in 0..n {
+                    self.d[i] = -self.g[i];
+                }
+                let ts = Instant::now();
+                self.chol.solve(&mut self.d);
+                self.report.factor_seconds += ts.elapsed().as_secs_f64();
             }
-            let ts = Instant::now();
-            self.chol.solve(&mut self.d);
-            self.report.factor_seconds += ts.elapsed().as_secs_f64();
             let slope: f64 = self.g.iter().zip(&self.d).map(|(a, b)| a * b).sum();
             let corrected = p.step_correction(&self.d, &mut self.c);
             match line_search(
@@ -225,6 +269,7 @@ impl Newton {
                 e0,
                 slope,
                 &mut self.trial,
+                self.qp.is_some(),
             ) {
                 Some(alpha) => {
                     p.accept(&self.trial, 1.0);
@@ -241,7 +286,8 @@ impl Newton {
                     self.c = gt;
                     // Only where the Hessian is positive definite (a convex model: reducing the
                     // residual approaches a minimum, not a saddle) and the residual is small.
-                    let trusted = shift == 0.0 && res < 1e-4;
+                    // (With constraint forces the plain gradient is no residual: never trusted.)
+                    let trusted = shift == 0.0 && res < 1e-4 && !self.qp_used;
                     if trusted && res_trial < 0.9 * res && p.max_step(&self.trial) >= 1.0 {
                         p.accept(&self.trial, 1.0);
                     } else if shift > 0.0 && escapes < 8 {
@@ -285,6 +331,36 @@ impl Newton {
                 ));
             }
         }
+    }
+
+    /// Factors H + τI as for an unconstrained step, then solves the step QP with it at the
+    /// current iterate. Returns the shift and the relative stationarity residual.
+    fn constrained_step<P: NewtonProblem>(&mut self, p: &mut P) -> Result<(f64, f64), String> {
+        let shift = self
+            .factor_regularized()
+            .ok_or_else(|| "Hessian could not be regularized".to_string())?;
+        for i in 0..self.d.len() {
+            self.d[i] = -self.g[i];
+        }
+        let ts = Instant::now();
+        self.chol.solve(&mut self.d);
+        self.report.factor_seconds += ts.elapsed().as_secs_f64();
+        let qp = self.qp.as_mut().expect("constrained problem");
+        p.constraints(&mut qp.c, &mut qp.jac);
+        // The QP is convex: when the unconstrained minimizer of its model satisfies the
+        // linearized constraints, it is the QP's solution, with zero multipliers. Then Clarabel
+        // is not needed, and a constraint that is never active leaves every iterate exactly as
+        // without it.
+        if qp.admits(&self.d) {
+            qp.z.fill(0.0);
+            qp.skipped += 1;
+            self.qp_used = false;
+            return Ok((shift, p.relative_residual(&self.g)));
+        }
+        qp.solve(&mut self.chol, &self.g, &mut self.d)?;
+        self.qp_used = true;
+        qp.stationarity(&self.g, &mut self.r);
+        Ok((shift, p.relative_residual(&self.r)))
     }
 
     fn fail(&mut self, msg: String) {
@@ -360,7 +436,15 @@ impl Newton {
         let size = p.perturbation_size(&v);
         v.iter_mut().for_each(|x| *x *= size);
         let mut alpha = p.max_step(&v);
+        let constrained = self.qp.is_some();
         for _ in 0..30 {
+            if constrained {
+                let scaled: Vec<f64> = v.iter().map(|x| alpha * x).collect();
+                if !p.feasible(&scaled) {
+                    alpha *= 0.5;
+                    continue;
+                }
+            }
             let e = p.trial_energy(&v, alpha);
             if e.is_finite() && e < e0 - 1e-12 * e0.abs() {
                 p.accept(&v, alpha);
@@ -377,7 +461,7 @@ fn norm(v: &[f64]) -> f64 {
 }
 
 /// Backtracking Armijo search along x + αd (+ α²c when a correction is given), from the
-/// problem's largest admissible step. The accepted step is left in `trial`. Near convergence the
+/// problem's largest admissible step; with constraints, infeasible trials are backtracked too. The accepted step is left in `trial`. Near convergence the
 /// energy decrease falls below round-off; a relative slack of a few ulps lets Newton finish there.
 fn line_search<P: NewtonProblem>(
     p: &mut P,
@@ -386,6 +470,7 @@ fn line_search<P: NewtonProblem>(
     e0: f64,
     slope: f64,
     trial: &mut [f64],
+    constrained: bool,
 ) -> Option<f64> {
     let slack = 64.0 * f64::EPSILON * e0.abs();
     let fill = |alpha: f64, trial: &mut [f64]| {
@@ -397,6 +482,10 @@ fn line_search<P: NewtonProblem>(
     let mut alpha = p.max_step(trial);
     for _ in 0..60 {
         fill(alpha, trial);
+        if constrained && !p.feasible(trial) {
+            alpha *= 0.5;
+            continue;
+        }
         let e = p.trial_energy(trial, 1.0);
         if e.is_finite() && e <= e0 + 1e-4 * alpha * slope.min(0.0) + slack {
             return Some(alpha);

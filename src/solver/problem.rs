@@ -39,4 +39,25 @@ pub trait NewtonProblem {
     fn set_continuation(&mut self, lambda: f64);
     /// Size of a perturbation along `direction` that is small for the problem's geometry.
     fn perturbation_size(&self, direction: &[f64]) -> f64;
+
+    // --- inequality constraints c(x) ≥ 0 (contact, bounds) -------------------------------------
+    // A problem without any keeps these defaults; the solver then never builds a QP.
+
+    /// Number of inequality constraints.
+    fn num_constraints(&self) -> usize {
+        0
+    }
+    /// Non-zeros (constraint, free unknown) of the Jacobian ∂c/∂x, grouped by constraint and
+    /// fixed for the whole solve.
+    fn constraint_pattern(&self) -> Vec<(usize, usize)> {
+        Vec::new()
+    }
+    /// Constraint values c(x) and Jacobian values (in `constraint_pattern` order) at the
+    /// current iterate.
+    fn constraints(&self, _c: &mut [f64], _jac: &mut [f64]) {}
+    /// Whether the current iterate moved by `step` satisfies every constraint (or violates none
+    /// more than the current iterate does).
+    fn feasible(&mut self, _step: &[f64]) -> bool {
+        true
+    }
 }

@@ -70,4 +70,25 @@ pub struct NewtonReport {
     pub residual_floor: f64,
     /// Iterations per load step.
     pub step_iterations: Vec<usize>,
+    /// The tolerance the solve used.
+    pub tolerance: f64,
+    /// Constrained problems only: the last step QP's multipliers and its cost.
+    pub constraints: Option<ConstraintReport>,
+}
+
+#[derive(Debug, Clone, Default, Serialize)]
+pub struct ConstraintReport {
+    /// Multiplier of each constraint at the last QP (N for contact and bounds).
+    pub multipliers: Vec<f64>,
+    pub qp_solves: usize,
+    /// QPs that stopped short of full accuracy (their steps still pass the line search).
+    pub inexact_qps: usize,
+    /// QPs whose solution was refined to the exact one on its active set.
+    pub polished_qps: usize,
+    /// Newton steps whose unconstrained step already satisfied the linearized constraints.
+    pub steps_without_qp: usize,
+    /// Interior-point iterations summed over the QPs.
+    pub qp_iterations: usize,
+    /// Seconds in Clarabel (setup, updates and solves).
+    pub qp_seconds: f64,
 }

@@ -70,6 +70,7 @@ pub fn scene(material: Material, rods: Vec<Rod>) -> Scene {
         supports: vec![],
         loads: vec![],
         obstacles: vec![],
+        bounds: vec![],
         target: None,
         solver: Solver::default(),
     }

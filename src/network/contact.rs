@@ -1,0 +1,369 @@
+//! Frictionless contact with rigid obstacles and simple bounds on node coordinates, as inequality
+//! constraints c(x) ≥ 0 on the free nodes (see docs/design.md, "Constraints").
+//!
+//! Contact is node-based: each free rod node keeps its centreline at least the rod's outer radius
+//! away from each obstacle, so the rod's surface touches, not its centreline. Every gap function
+//! below is convex in the node position (distance to a half-space, to a ball, to an infinite
+//! cylinder; a coordinate), which is what makes the solver's linearized constraints safe: a step
+//! that satisfies c(x) + ∇c·d ≥ 0 also satisfies c(x + αd) ≥ (1 − α)c(x) for α ∈ [0, 1].
+
+use crate::math::vec::{dot, norm, scalef, sub};
+use crate::network::build::RodInfo;
+use crate::network::model::{Model, FIXED};
+use crate::scene::types::{Obstacle, Scene};
+use crate::scene::FieldError;
+
+/// An obstacle with unit directions.
+#[derive(Debug, Clone, Copy)]
+pub enum Shape {
+    Plane {
+        point: [f64; 3],
+        normal: [f64; 3],
+    },
+    Sphere {
+        center: [f64; 3],
+        radius: f64,
+    },
+    Cylinder {
+        point: [f64; 3],
+        axis: [f64; 3],
+        radius: f64,
+    },
+}
+
+impl Shape {
+    fn of(o: &Obstacle) -> Shape {
+        let unit = |v: [f64; 3]| scalef(v, 1.0 / norm(v));
+        match *o {
+            Obstacle::Plane { point, normal } => Shape::Plane {
+                point,
+                normal: unit(normal),
+            },
+            Obstacle::Sphere { center, radius } => Shape::Sphere { center, radius },
+            Obstacle::Cylinder {
+                point,
+                axis,
+                radius,
+            } => Shape::Cylinder {
+                point,
+                axis: unit(axis),
+                radius,
+            },
+        }
+    }
+
+    /// Signed distance from `x` to the surface offset by `clearance`, and its (unit) gradient.
+    fn gap(&self, x: [f64; 3], clearance: f64) -> (f64, [f64; 3]) {
+        // At the centre of a ball or on a cylinder's axis the gradient is undefined; any unit
+        // vector is a valid subgradient there, and such a node is deep inside anyway.
+        let radial = |v: [f64; 3], r: f64| {
+            let l = norm(v);
+            if l > 0.0 {
+                (l - r - clearance, scalef(v, 1.0 / l))
+            } else {
+                (-r - clearance, [0.0, 0.0, 1.0])
+            }
+        };
+        match *self {
+            Shape::Plane { point, normal } => (dot(normal, sub(x, point)) - clearance, normal),
+            Shape::Sphere { center, radius } => radial(sub(x, center), radius),
+            Shape::Cylinder {
+                point,
+                axis,
+                radius,
+            } => {
+                let u = sub(x, point);
+                radial(sub(u, scalef(axis, dot(u, axis))), radius)
+            }
+        }
+    }
+}
+
+/// What a constraint row comes from, for results.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub enum Source {
+    Obstacle(usize),
+    Bound(usize),
+}
+
+#[derive(Debug, Clone, Copy)]
+enum Kind {
+    /// Gap to shape `shape` minus the node's outer radius.
+    Surface { shape: usize, clearance: f64 },
+    /// x[axis] ≥ value.
+    Lower { axis: usize, value: f64 },
+    /// x[axis] ≤ value.
+    Upper { axis: usize, value: f64 },
+}
+
+/// One inequality c(x_node) ≥ 0.
+#[derive(Debug, Clone, Copy)]
+pub struct Row {
+    pub node: usize,
+    pub source: Source,
+    kind: Kind,
+}
+
+#[derive(Debug, Clone)]
+pub struct Contact {
+    pub shapes: Vec<Shape>,
+    pub rows: Vec<Row>,
+    /// Length scale of the scene (m), for round-off tolerances.
+    length_scale: f64,
+}
+
+/// Largest penetration (relative to the length scale) that the rest shape may have; larger
+/// ones are input errors, smaller ones are round-off in the scene's coordinates and are removed
+/// by the first Newton step.
+pub const REST_TOLERANCE: f64 = 1e-9;
+
+fn node_pos(q: &[f64], n: usize) -> [f64; 3] {
+    [q[3 * n], q[3 * n + 1], q[3 * n + 2]]
+}
+
+impl Row {
+    /// Value and gradient with respect to the node's position.
+    fn eval(&self, shapes: &[Shape], x: [f64; 3]) -> (f64, [f64; 3]) {
+        match self.kind {
+            Kind::Surface { shape, clearance } => shapes[shape].gap(x, clearance),
+            Kind::Lower { axis, value } => {
+                let mut g = [0.0; 3];
+                g[axis] = 1.0;
+                (x[axis] - value, g)
+            }
+            Kind::Upper { axis, value } => {
+                let mut g = [0.0; 3];
+                g[axis] = -1.0;
+                (value - x[axis], g)
+            }
+        }
+    }
+
+    /// Node coordinates the row depends on (its Jacobian's non-zeros).
+    fn axes(&self) -> std::ops::Range<usize> {
+        match self.kind {
+            Kind::Surface { .. } => 0..3,
+            Kind::Lower { axis, .. } | Kind::Upper { axis, .. } => axis..axis + 1,
+        }
+    }
+
+    /// Value and gradient at positions `q`.
+    pub fn at(&self, c: &Contact, q: &[f64]) -> (f64, [f64; 3]) {
+        self.eval(&c.shapes, node_pos(q, self.node))
+    }
+}
+
+impl Contact {
+    /// The constraints a scene declares, over the free nodes of the built rods; `None` when it
+    /// declares none. Supported nodes are fixed and carry no constraint. A rest shape that
+    /// violates a constraint is an input error.
+    pub fn build(
+        scene: &Scene,
+        rods: &[RodInfo],
+        model: &Model,
+    ) -> Result<Option<Contact>, FieldError> {
+        if scene.obstacles.is_empty() && scene.bounds.is_empty() {
+            return Ok(None);
+        }
+        let n_nodes = model.state.q.len() / 3;
+        // A node shared by rods of different sections keeps the largest clearance.
+        let mut radius = vec![0.0f64; n_nodes];
+        let mut owner: Vec<Option<(usize, usize)>> = vec![None; n_nodes];
+        let mut order = Vec::new();
+        for (r, rod) in rods.iter().enumerate() {
+            for (k, &n) in rod.nodes.iter().enumerate() {
+                if owner[n].is_none() {
+                    owner[n] = Some((r, k));
+                    order.push(n);
+                }
+                radius[n] = radius[n].max(rod.stiffness.outer_radius);
+            }
+        }
+        let free = |n: usize| model.free[3 * n] != FIXED;
+        let shapes: Vec<Shape> = scene.obstacles.iter().map(Shape::of).collect();
+        let mut rows = Vec::new();
+        for i in 0..shapes.len() {
+            for &n in order.iter().filter(|&&n| free(n)) {
+                rows.push(Row {
+                    node: n,
+                    source: Source::Obstacle(i),
+                    kind: Kind::Surface {
+                        shape: i,
+                        clearance: radius[n],
+                    },
+                });
+            }
+        }
+        for (i, b) in scene.bounds.iter().enumerate() {
+            let rod_named = |name: &String| {
+                rods.iter()
+                    .find(|r| &r.name == name)
+                    .expect("validated rod")
+            };
+            let mut nodes: Vec<usize> = match (&b.rod, &b.vertices) {
+                (Some(name), Some(vs)) => {
+                    let rod = rod_named(name);
+                    vs.iter().map(|&v| rod.nodes[v * rod.subdivide]).collect()
+                }
+                (Some(name), None) => rod_named(name).nodes.clone(),
+                _ => order.clone(),
+            };
+            let mut seen = std::collections::HashSet::new();
+            nodes.retain(|&n| free(n) && seen.insert(n));
+            for axis in 0..3 {
+                for &n in &nodes {
+                    if let Some(value) = b.min[axis] {
+                        rows.push(Row {
+                            node: n,
+                            source: Source::Bound(i),
+                            kind: Kind::Lower { axis, value },
+                        });
+                    }
+                    if let Some(value) = b.max[axis] {
+                        rows.push(Row {
+                            node: n,
+                            source: Source::Bound(i),
+                            kind: Kind::Upper { axis, value },
+                        });
+                    }
+                }
+            }
+        }
+        let contact = Contact {
+            shapes,
+            rows,
+            length_scale: model.length_scale,
+        };
+        let q = &model.state.q;
+        for row in &contact.rows {
+            let (c, _) = row.at(&contact, q);
+            if c < -REST_TOLERANCE * model.length_scale {
+                let (r, k) = owner[row.node].expect("rod node");
+                let at = format!(
+                    "node {k} of rod \"{}\" at {:?}",
+                    rods[r].name,
+                    node_pos(q, row.node)
+                );
+                return Err(match (row.source, row.kind) {
+                    (Source::Obstacle(i), _) => FieldError::new(
+                        "obstacles",
+                        i,
+                        "",
+                        format!(
+                            "the rest shape penetrates this obstacle by {:.3e} m at {at}; rods \
+                             must start outside obstacles with their surface, which is the \
+                             section's outer radius ({:.3e} m) from the centreline",
+                            -c, radius[row.node]
+                        ),
+                    ),
+                    (Source::Bound(i), Kind::Lower { axis, value }) => FieldError::new(
+                        "bounds",
+                        i,
+                        "min",
+                        format!("{at} is below min[{axis}] = {value} in the rest shape"),
+                    ),
+                    (Source::Bound(i), Kind::Upper { axis, value }) => FieldError::new(
+                        "bounds",
+                        i,
+                        "max",
+                        format!("{at} is above max[{axis}] = {value} in the rest shape"),
+                    ),
+                    (Source::Bound(i), Kind::Surface { .. }) => {
+                        unreachable!("bound {i} built as a surface row")
+                    }
+                });
+            }
+        }
+        Ok(Some(contact))
+    }
+
+    pub fn len(&self) -> usize {
+        self.rows.len()
+    }
+
+    pub fn is_empty(&self) -> bool {
+        self.rows.is_empty()
+    }
+
+    /// Jacobian non-zeros as (row, free unknown), in the order [`Contact::values`] fills them.
+    pub fn pattern(&self, free: &[u32]) -> Vec<(usize, usize)> {
+        let mut out = Vec::new();
+        for (j, row) in self.rows.iter().enumerate() {
+            for k in row.axes() {
+                out.push((j, free[3 * row.node + k] as usize));
+            }
+        }
+        out
+    }
+
+    /// Constraint values and Jacobian values (pattern order) at positions `q`.
+    pub fn values(&self, q: &[f64], c: &mut [f64], jac: &mut [f64]) {
+        let mut at = 0;
+        for (j, row) in self.rows.iter().enumerate() {
+            let (v, g) = row.at(self, q);
+            c[j] = v;
+            for k in row.axes() {
+                jac[at] = g[k];
+                at += 1;
+            }
+        }
+    }
+
+    /// Round-off allowance of a gap (m): coordinates of size X carry errors of ε·X.
+    fn slack(&self, q: &[f64]) -> f64 {
+        let x = self
+            .rows
+            .iter()
+            .map(|r| norm(node_pos(q, r.node)))
+            .fold(self.length_scale, f64::max);
+        16.0 * f64::EPSILON * x
+    }
+
+    /// Whether positions `trial` keep every constraint satisfied, or no more violated than at
+    /// `current` (the rest shape may violate by round-off).
+    pub fn admits(&self, current: &[f64], trial: &[f64]) -> bool {
+        let slack = self.slack(trial);
+        self.rows.iter().all(|r| {
+            let now = r.at(self, current).0;
+            let then = r.at(self, trial).0;
+            then >= now.min(0.0) - slack
+        })
+    }
+
+    /// Moves every violating node back onto the constraint's surface (closest point), e.g. after
+    /// an extrapolated predictor. Two sweeps settle nodes with two active constraints that do not
+    /// interfere (a floor and a side bound); anything else is left to the Newton steps.
+    pub fn project(&self, q: &mut [f64]) {
+        for _ in 0..2 {
+            for r in &self.rows {
+                let (c, g) = r.at(self, q);
+                if c < 0.0 {
+                    for k in 0..3 {
+                        q[3 * r.node + k] -= c * g[k];
+                    }
+                }
+            }
+        }
+    }
+
+    /// Limits a second-order step correction `corr` (over free unknowns) so that the curve
+    /// x + αd + α²·corr satisfies every linearized constraint at α = 1 whenever x + d does. With
+    /// convex gaps that keeps the whole curve feasible for α ∈ [0, 1]: the linearized gap
+    /// a + αb + α²e is ≥ (1 − α)a when e ≥ 0, and concave with non-negative ends when e < 0.
+    pub fn limit_correction(&self, q: &[f64], free: &[u32], d: &[f64], corr: &mut [f64]) {
+        for r in &self.rows {
+            let (c, g) = r.at(self, q);
+            let fi = |k: usize| free[3 * r.node + k] as usize;
+            let along = |v: &[f64]| r.axes().map(|k| g[k] * v[fi(k)]).sum::<f64>();
+            let e = along(corr);
+            let total = c + along(d) + e;
+            if total < 0.0 && e < 0.0 {
+                // Remove just enough of the correction's inward part (gradients are unit).
+                let cut = (-total).min(-e);
+                for k in r.axes() {
+                    corr[fi(k)] += cut * g[k];
+                }
+            }
+        }
+    }
+}
