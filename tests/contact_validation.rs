@@ -206,11 +206,15 @@ fn lifted_heavy_rod_small_height() {
 /// | 0.1 | 40 | 7 | −8.13e-4 | −8.14e-4 | −8.04e-4 | −4.46e-3 |
 /// | 0.1 | 80 | 22 | 2.86e-4 | 2.81e-4 | 2.83e-4 | −4.46e-3 |
 /// | 0.1 | 160 | 35 | 3.83e-5 | 3.77e-5 | 3.81e-5 | −4.46e-3 |
+/// | 0.1 | 320 | 38 | −2.58e-6 | −2.47e-6 | −2.35e-6 | −4.46e-3 |
 /// | 1 | 40 | 40 | −2.83e-4 | −3.66e-4 | −2.50e-4 | −1.40e-1 |
 /// | 1 | 80 | 54 | −3.33e-5 | −5.86e-5 | −3.34e-5 | −1.40e-1 |
-/// | 1 | 160 | 75 | −2.39e-5 | −2.56e-5 | −1.84e-5 | −1.40e-1 |
+/// | 1 | 160 | 73 | −2.39e-5 | −2.56e-5 | −1.84e-5 | −1.40e-1 |
+/// | 1 | 320 | 98 | 5.54e-6 | 4.45e-6 | 5.03e-6 | −1.40e-1 |
 ///
-/// The lift-off point sits between nodes, so the errors do not fall monotonically at h = 1.
+/// The lift-off point sits between nodes, so the errors do not fall monotonically at h = 1;
+/// at h = 0.1 and N = 320 they meet the rod's extensibility (F/EA = 4e-6). (h = 1 with N = 640
+/// did not converge in 500 iterations.)
 #[test]
 fn lifted_heavy_rod_large_height_follows_the_elastica() {
     let (length, r) = (4.0, 0.005);
@@ -218,7 +222,7 @@ fn lifted_heavy_rod_large_height_follows_the_elastica() {
         let exact: HeavyElastica = heavy_elastica_lifted_end(h);
         let lin = heavy_elastica_small_deflection(h);
         let mut errs = Vec::new();
-        for n in [40, 80, 160] {
+        for n in [40, 80, 160, 320] {
             let sol = solve(&lifted_rod(n, h, length, r));
             check_kkt(&sol, 1e-9);
             let m = measure(&sol, n, length);
@@ -238,9 +242,9 @@ fn lifted_heavy_rod_large_height_follows_the_elastica() {
             errs.push(e);
         }
         let last = errs[errs.len() - 1];
-        assert!(last.0.abs() < 1e-4, "h = {h}: {errs:?}");
-        assert!(last.1.abs() < 1e-4, "h = {h}: {errs:?}");
-        assert!(last.2.abs() < 1e-4, "h = {h}: {errs:?}");
+        assert!(last.0.abs() < 1e-5, "h = {h}: {errs:?}");
+        assert!(last.1.abs() < 1e-5, "h = {h}: {errs:?}");
+        assert!(last.2.abs() < 1e-5, "h = {h}: {errs:?}");
         // The discrete answer is far closer to the elastica than linear theory is.
         assert!(last.0.abs() < 0.05 * rel(lin.lift_force, exact.lift_force).abs());
     }
@@ -437,4 +441,53 @@ fn active_bound_carries_the_beam_theory_reaction() {
         errs[1].abs() < 4e-4 && errs[0].abs() / errs[1].abs() > 3.5,
         "{errs:?}"
     );
+}
+
+/// Contact on a network: the grid of `networks/grid.ron` (four rods, Ball joints sharing nodes,
+/// ends pinned at z = 0) pushed by 1 N at each crossing onto a floor 2 cm below (its surface
+/// stops the centrelines at −1 cm). Shared joint nodes carry one constraint each, and reactions,
+/// contact forces and loads balance. Measured: 16 contacts, force imbalance 1.8e-11 N (of 4 N),
+/// nodes no lower than −0.01 m.
+#[test]
+fn grid_network_on_a_floor() {
+    let (mut s, _) = rodnet::scene::load(std::path::Path::new("networks/grid.ron")).unwrap();
+    for l in &mut s.loads {
+        if let Load::Force { force, .. } = l {
+            *force = [0.0, 0.0, -1.0];
+        }
+    }
+    s.obstacles = vec![Obstacle::Plane {
+        point: [0.0, 0.0, -0.02],
+        normal: [0.0, 0.0, 1.0],
+    }];
+    let sol = solve(&s);
+    check_kkt(&sol, 1e-9);
+    let r = &sol.results;
+    let contacts = r.contacts.as_ref().unwrap();
+    let mut f = [0.0, 0.0, -4.0];
+    for v in contacts
+        .iter()
+        .map(|c| c.force)
+        .chain(r.reactions.iter().map(|x| x.force))
+    {
+        for k in 0..3 {
+            f[k] += v[k];
+        }
+    }
+    let imbalance = f.iter().map(|v| v.abs()).fold(0.0, f64::max);
+    let lowest = r
+        .rods
+        .iter()
+        .flat_map(|rod| rod.points.iter().map(|p| p[2]))
+        .fold(f64::INFINITY, f64::min);
+    println!(
+        "grid on floor: {} contacts, imbalance {imbalance:.2e} N, lowest node {lowest:.9} m, {} iterations",
+        contacts.len(),
+        r.iterations
+    );
+    assert!(contacts.len() >= 4, "{contacts:?}");
+    assert!(imbalance <= 1e-9 * 4.0, "{imbalance:.2e}");
+    assert!(lowest >= -0.01 - 1e-9 * 3.0, "{lowest}");
+    // A node shared by two rods is one constraint row: 4 rods × 47 inner nodes, minus 4 joints.
+    assert_eq!(r.kkt.as_ref().unwrap().constraints, 4 * 47 - 4);
 }

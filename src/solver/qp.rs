@@ -61,6 +61,8 @@ pub struct StepQp {
 /// Largest active set that is polished (the dense Schur complement costs a² memory and a
 /// triangular solve per active constraint).
 const POLISH_MAX_ACTIVE: usize = 2000;
+/// Active-set corrections tried before the interior-point solution is kept.
+const POLISH_ROUNDS: usize = 6;
 
 /// y = (A + τI) x with the matrix of `chol`'s last factorization.
 fn shifted_multiply(chol: &SparseCholesky, x: &[f64], y: &mut [f64]) {
@@ -297,58 +299,116 @@ impl StepQp {
     }
 
     /// Replaces the interior-point solution by the exact solution of the equality-constrained
-    /// QP on its active set A = {j : z_j > s_j}, when that is consistent (z_A ≥ 0, the other
-    /// constraints satisfied). Interior-point steps and multipliers carry errors of the order of
-    /// the QP's tolerances relative to its data, which near convergence is most of the step;
-    /// with the exact active-set solution Newton converges quadratically and the multipliers
-    /// balance the gradient to round-off (as in OSQP's polishing). With P = H + τI factored
-    /// already, the active-set system reduces to the dense Schur complement
-    /// S = J_A P⁻¹ J_Aᵀ: S z_A = J_A P⁻¹ g − c_A, d = P⁻¹(J_Aᵀ z_A − g).
+    /// QP on an active set, starting from the interior point's A = {j : z_j > s_j} (as OSQP
+    /// polishes). Interior-point steps and multipliers carry errors of the order of the QP's
+    /// tolerances relative to its data, which near convergence is most of the step; with the
+    /// exact active-set solution Newton converges quadratically and the multipliers balance the
+    /// gradient to round-off. With P = H + τI factored already, the active-set system reduces to
+    /// the dense Schur complement S = J_A P⁻¹ J_Aᵀ: S z_A = J_A P⁻¹ g − c_A,
+    /// d = P⁻¹(J_Aᵀ z_A − g). Constraints that touch with (almost) no force are degenerate for
+    /// the interior point and land on either side of z = s; a few primal-dual active-set
+    /// rounds (drop rows with z < 0, add violated rows) settle them. False if no consistent
+    /// active set is found; the interior-point solution then stands.
     fn polish(&mut self, chol: &mut SparseCholesky, g: &[f64], d: &mut [f64]) -> bool {
-        let active: Vec<usize> = (0..self.m).filter(|&j| self.z[j] > self.slack[j]).collect();
-        let a = active.len();
-        if a > POLISH_MAX_ACTIVE {
-            return false;
-        }
+        let mut active: Vec<usize> = (0..self.m).filter(|&j| self.z[j] > self.slack[j]).collect();
         let rows = self.row_ranges();
         let n = self.n;
-        // W = P⁻¹ J_Aᵀ, column by column.
-        let mut w = vec![0.0; a * n];
-        for (i, &j) in active.iter().enumerate() {
-            let col = &mut w[i * n..(i + 1) * n];
-            for k in rows[j].clone() {
-                col[self.pattern[k].1] += self.jac[k];
-            }
-            chol.solve(col);
-        }
         let mut u = g.to_vec();
         chol.solve(&mut u);
+        let mut columns: std::collections::HashMap<usize, Vec<f64>> = Default::default();
+        let slack_tol = 1e-12 * self.c.iter().fold(1.0f64, |m, v| m.max(v.abs()));
+        for _ in 0..POLISH_ROUNDS {
+            if active.len() > POLISH_MAX_ACTIVE {
+                return false;
+            }
+            // W = P⁻¹ J_Aᵀ, one column per active row, kept across rounds.
+            for &j in &active {
+                if let std::collections::hash_map::Entry::Vacant(slot) = columns.entry(j) {
+                    let mut col = vec![0.0; n];
+                    for k in rows[j].clone() {
+                        col[self.pattern[k].1] += self.jac[k];
+                    }
+                    chol.solve(&mut col);
+                    slot.insert(col);
+                }
+            }
+            let Some((dp, z)) = self.solve_on(&active, &rows, &columns, chol, g, &u) else {
+                return false;
+            };
+            let zmax = z.iter().fold(0.0f64, |m, v| m.max(v.abs()));
+            let mut is_active = vec![false; self.m];
+            for &j in &active {
+                is_active[j] = true;
+            }
+            let jrow = |j: usize, v: &[f64]| -> f64 {
+                rows[j]
+                    .clone()
+                    .map(|k| self.jac[k] * v[self.pattern[k].1])
+                    .sum()
+            };
+            let violated: Vec<usize> = (0..self.m)
+                .filter(|&j| !is_active[j] && self.c[j] + jrow(j, &dp) < -slack_tol)
+                .collect();
+            let negative: Vec<bool> = z.iter().map(|&v| v < -1e-12 * zmax).collect();
+            if violated.is_empty() && !negative.contains(&true) {
+                d.copy_from_slice(&dp);
+                self.z.iter_mut().for_each(|v| *v = 0.0);
+                for (i, &j) in active.iter().enumerate() {
+                    self.z[j] = z[i].max(0.0);
+                }
+                return true;
+            }
+            let mut next: Vec<usize> = active
+                .iter()
+                .zip(&negative)
+                .filter(|(_, &neg)| !neg)
+                .map(|(&j, _)| j)
+                .collect();
+            next.extend(violated);
+            next.sort_unstable();
+            active = next;
+        }
+        false
+    }
+
+    /// The equality-constrained QP on `active` (see [`Self::polish`]), with iterative
+    /// refinement: the τ-regularized zero modes make P⁻¹g large against d, so d carries
+    /// cancellation error that refinement on the KKT residual removes.
+    fn solve_on(
+        &self,
+        active: &[usize],
+        rows: &[std::ops::Range<usize>],
+        columns: &std::collections::HashMap<usize, Vec<f64>>,
+        chol: &mut SparseCholesky,
+        g: &[f64],
+        u: &[f64],
+    ) -> Option<(Vec<f64>, Vec<f64>)> {
+        let (a, n) = (active.len(), self.n);
         let jrow = |j: usize, v: &[f64]| -> f64 {
             rows[j]
                 .clone()
                 .map(|k| self.jac[k] * v[self.pattern[k].1])
                 .sum()
         };
+        let w: Vec<&Vec<f64>> = active.iter().map(|j| &columns[j]).collect();
         let mut schur = vec![0.0; a * a];
         let mut z = vec![0.0; a];
         for (r, &jr) in active.iter().enumerate() {
             for c in 0..=r {
-                schur[r * a + c] = jrow(jr, &w[c * n..(c + 1) * n]);
+                schur[r * a + c] = jrow(jr, w[c]);
             }
-            z[r] = jrow(jr, &u) - self.c[jr];
+            z[r] = jrow(jr, u) - self.c[jr];
         }
         if !dense_cholesky(&mut schur, a) {
-            return false;
+            return None;
         }
         dense_cholesky_solve(&schur, a, &mut z);
         let mut dp: Vec<f64> = u.iter().map(|v| -v).collect();
         for (i, zi) in z.iter().enumerate() {
             for k in 0..n {
-                dp[k] += w[i * n + k] * zi;
+                dp[k] += w[i][k] * zi;
             }
         }
-        // Soft modes (the τ-regularized zero modes) make P⁻¹g large against d, so d carries
-        // cancellation error; iterative refinement on the KKT residual removes it.
         let mut rd = vec![0.0; n];
         let mut last = f64::INFINITY;
         for _ in 0..4 {
@@ -378,31 +438,11 @@ impl StepQp {
             for (i, dzi) in dz.iter().enumerate() {
                 z[i] += dzi;
                 for k in 0..n {
-                    dp[k] += w[i * n + k] * dzi;
+                    dp[k] += w[i][k] * dzi;
                 }
             }
         }
-        let zmax = z.iter().fold(0.0f64, |m, v| m.max(v.abs()));
-        if z.iter().any(|&v| v < -1e-12 * zmax) {
-            return false;
-        }
-        // Inactive constraints must hold (up to round-off of the positions).
-        let slack_tol = 1e-12 * self.c.iter().fold(1.0f64, |m, v| m.max(v.abs()));
-        let mut is_active = vec![false; self.m];
-        for &j in &active {
-            is_active[j] = true;
-        }
-        for j in 0..self.m {
-            if !is_active[j] && self.c[j] + jrow(j, &dp) < -slack_tol {
-                return false;
-            }
-        }
-        d.copy_from_slice(&dp);
-        self.z.iter_mut().for_each(|v| *v = 0.0);
-        for (i, &j) in active.iter().enumerate() {
-            self.z[j] = z[i].max(0.0);
-        }
-        true
+        Some((dp, z))
     }
 
     /// Pattern entries of each constraint row (rows are contiguous in the pattern).
