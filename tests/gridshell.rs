@@ -33,22 +33,24 @@ fn as_array(m: &ShapeMetrics) -> [(&'static str, f64); 6] {
 ///
 /// Subdivision study (release build, same everything else; lengths over R):
 ///
-/// | K  | max radial | rms radial | apex     | max net  | rms net  |
-/// |----|------------|------------|----------|----------|----------|
-/// | 1  | 3.5173e-2  | 1.9390e-2  | 0.932719 | 3.6691e-2| 2.1109e-2|
-/// | 2  | 1.7557e-2  | 1.0191e-2  | 0.963564 | 1.8305e-2| 1.0918e-2|
-/// | 4  | 1.8054e-2  | 9.6977e-3  | 0.963111 | 1.8771e-2| 1.0441e-2|
-/// | 8  | 1.8299e-2  | 9.6151e-3  | 0.962860 | 1.9013e-2| 1.0368e-2|
-/// | 16 | 1.8368e-2  | 9.5970e-3  | 0.962788 | 1.9082e-2| 1.0352e-2|
-/// | 32 | 1.8386e-2  | 9.5926e-3  | 0.962769 | 1.9100e-2| 1.0349e-2|
+/// | K  | max radial | rms radial | apex     | max net   | rms net   |
+/// |----|------------|------------|----------|-----------|-----------|
+/// | 1  | 3.5173e-2  | 1.9390e-2  | 0.932719 | 3.6691e-2 | 2.1109e-2 |
+/// | 2  | 1.7194e-2  | 9.9852e-3  | 0.963967 | 1.7930e-2 | 1.0697e-2 |
+/// | 4  | 1.7963e-2  | 9.6180e-3  | 0.963216 | 1.8677e-2 | 1.0361e-2 |
+/// | 8  | 1.8284e-2  | 9.5902e-3  | 0.962879 | 1.8997e-2 | 1.0344e-2 |
+/// | 16 | 1.8361e-2  | 9.5887e-3  | 0.962797 | 1.9074e-2 | 1.0344e-2 |
+/// | 32 | 1.8384e-2  | 9.5906e-3  | 0.962771 | 1.9098e-2 | 1.0347e-2 |
 ///
-/// From K = 4 on the changes fall by 3.5–4 per halving (second order), so Richardson from
-/// K = 16, 32 gives the limits 1.8392e-2, 9.591e-3, 0.962763, 1.9106e-2, 1.0348e-2, and the
-/// K = 4 values pinned below lie within 3.5e-4 R of them (1.8 % of the deviations
-/// themselves). The pins are tight (2e-6): the solve stops at its round-off floor, a relative
-/// residual of ~1.6e-7, which leaves positions uncertain by a few 1e-7 R; the form finding is
-/// bitwise deterministic (see the thread-count test), so on one platform the values repeat
-/// exactly.
+/// Max radial deviation, apex and max net distance change by factors 3.2–4.1 per halving from
+/// K = 4 on (second order); Richardson from K = 16, 32 gives 1.8392e-2, 0.962763 and
+/// 1.9106e-2. The rms values settle to 9.59e-3 and 1.035e-2 within ±2.5e-6 (the end segments'
+/// edge counts round up, so they do not refine in step). The K = 4 values pinned below are
+/// within 4.5e-4 R of these limits (2.5 % of the deviations themselves). The pins are tight
+/// (2e-6): the solve stops once the relative residual is below its round-off floor (9.1e-8
+/// here; it reaches 3.2e-8), which leaves positions uncertain by well under 1e-6 R; the form
+/// finding is bitwise deterministic (see the thread-count test), so on one platform the values
+/// repeat exactly.
 #[test]
 fn coarse_hemisphere_matches_its_pinned_converged_metrics() {
     let r = form_find(8, 4, DEFAULT_START_CAP);
@@ -57,12 +59,12 @@ fn coarse_hemisphere_matches_its_pinned_converged_metrics() {
     // The dome, not a buckled-down or mixed state: every crossing above the equator plane.
     assert!(m.lowest_joint_height > 0.1, "{m:?}");
     let pinned = [
-        ("max_abs_radial_deviation", 1.805372684e-2),
-        ("rms_radial_deviation", 9.697661783e-3),
-        ("mean_radial_deviation", -7.019975855e-4),
-        ("apex_height", 9.631107454e-1),
-        ("max_net_distance", 1.877085731e-2),
-        ("rms_net_distance", 1.044116035e-2),
+        ("max_abs_radial_deviation", 1.796327928e-2),
+        ("rms_radial_deviation", 9.618043355e-3),
+        ("mean_radial_deviation", -6.638041340e-4),
+        ("apex_height", 9.632162617e-1),
+        ("max_net_distance", 1.867703452e-2),
+        ("rms_net_distance", 1.036055767e-2),
     ];
     for ((name, got), (pname, want)) in as_array(m).into_iter().zip(pinned) {
         assert_eq!(name, pname);
@@ -81,7 +83,7 @@ fn coarse_hemisphere_matches_its_pinned_converged_metrics() {
 }
 
 /// The starting cap only selects the branch: caps of radius 3R and 10R lead to the same
-/// equilibrium. Measured difference of the metrics: at most 1.4e-11 (apex height);
+/// equilibrium. Measured difference of the metrics: at most 9.4e-12 (apex height);
 /// a mirrored or mixed state would differ by order one.
 #[test]
 fn the_equilibrium_does_not_depend_on_the_starting_cap() {
@@ -114,9 +116,9 @@ fn form_finding_is_bitwise_deterministic_across_thread_counts() {
 
 /// Hinge and Rigid joints form-find too. A Hinge scissors freely like a Ball joint, so its dome
 /// stays about as close to the net; a Rigid joint keeps the crossing angle at 90°, which the
-/// Chebyshev net cannot (its angles range from 90° at the pole to ~50° near the corners), so
-/// the Rigid dome deviates more. Measured at n = 6, subdivide 2, max net distance: Ball
-/// 1.376e-2, Hinge 1.289e-2, Rigid 3.144e-2.
+/// Chebyshev net cannot (its crossing angles range over 48°–132° at n = 8, 40°–140° at n = 12),
+/// so the Rigid dome deviates more. Measured at n = 6, subdivide 2, max net distance: Ball
+/// 1.268e-2, Hinge 1.182e-2, Rigid 3.742e-2.
 #[test]
 fn hinge_and_rigid_joints_form_find_and_rigid_ones_resist_the_net() {
     let with = |joint| {

@@ -47,7 +47,8 @@ pub struct HemisphereSpec {
     pub radius: f64,
     /// Rods per family, n.
     pub rods: usize,
-    /// Edges per segment between neighbouring input vertices (crossings and ends).
+    /// Edges per crossing spacing: segments between crossings get `subdivide` equal edges, end
+    /// segments as many as keep their edges no longer than that (at least one).
     pub subdivide: usize,
     pub joint: JointChoice,
     /// Rod cross-section, m. Non-circular sections put their first axis (`Ellipse::a`,
@@ -70,7 +71,7 @@ pub const DEFAULT_SECTION_RATIO: f64 = 0.005;
 
 impl HemisphereSpec {
     /// The default problem for radius `radius`, n rods per family and `subdivide` edges per
-    /// segment: Ball joints, circular rods with r/R = 0.005, E = 1 GPa, ν = 0.3. For a problem
+    /// crossing spacing: Ball joints, circular rods with r/R = 0.005, E = 1 GPa, ν = 0.3. For a problem
     /// driven only by prescribed motions the equilibrium shape does not depend on E.
     pub fn new(radius: f64, rods: usize, subdivide: usize) -> HemisphereSpec {
         HemisphereSpec {
@@ -135,31 +136,39 @@ pub fn footprint(spec: &HemisphereSpec) -> Footprint {
     let mut supports = Vec::with_capacity(4 * n);
     for j in 0..n {
         let l = net.half_lengths[j];
-        let mut points = vec![[-l, c[j], 0.0]];
-        for i in (0..n).filter(|&i| inside(i, j)) {
+        let crossing: Vec<usize> = (0..n).filter(|&i| inside(i, j)).collect();
+        let mut keys = vec![[-l, c[j], 0.0]];
+        for &i in &crossing {
             // A crossing above the equator lies inside the rod's span; anything else would
             // make the rod fold back on itself.
             assert!(c[i].abs() < l, "crossing ({i}, {j}) outside rod u{j}");
-            u_vertex[i][j] = Some(points.len());
-            points.push([c[i], c[j], 0.0]);
+            keys.push([c[i], c[j], 0.0]);
         }
-        points.push([l, c[j], 0.0]);
+        keys.push([l, c[j], 0.0]);
+        let (points, at) = subdivided(&keys, spec.subdivide, net.spacing);
+        for (k, &i) in crossing.iter().enumerate() {
+            u_vertex[i][j] = Some(at[k + 1]);
+        }
         let last = points.len() - 1;
-        rods.push(rod(u_rod_name(j), points, spec.subdivide, [0.0, 1.0, 0.0]));
+        rods.push(rod(u_rod_name(j), points, [0.0, 1.0, 0.0]));
         supports.push(pin(u_rod_name(j), 0, net.end_point(j, false)));
         supports.push(pin(u_rod_name(j), last, net.end_point(j, true)));
     }
     for i in 0..n {
         let l = net.half_lengths[i];
-        let mut points = vec![[c[i], -l, 0.0]];
-        for j in (0..n).filter(|&j| inside(i, j)) {
+        let crossing: Vec<usize> = (0..n).filter(|&j| inside(i, j)).collect();
+        let mut keys = vec![[c[i], -l, 0.0]];
+        for &j in &crossing {
             assert!(c[j].abs() < l, "crossing ({i}, {j}) outside rod v{i}");
-            v_vertex[i][j] = Some(points.len());
-            points.push([c[i], c[j], 0.0]);
+            keys.push([c[i], c[j], 0.0]);
         }
-        points.push([c[i], l, 0.0]);
+        keys.push([c[i], l, 0.0]);
+        let (points, at) = subdivided(&keys, spec.subdivide, net.spacing);
+        for (k, &j) in crossing.iter().enumerate() {
+            v_vertex[i][j] = Some(at[k + 1]);
+        }
         let last = points.len() - 1;
-        rods.push(rod(v_rod_name(i), points, spec.subdivide, [1.0, 0.0, 0.0]));
+        rods.push(rod(v_rod_name(i), points, [1.0, 0.0, 0.0]));
         // Family-v rod i is the u↔v mirror of family-u rod i.
         supports.push(pin(v_rod_name(i), 0, mirror_uv(net.end_point(i, false))));
         supports.push(pin(v_rod_name(i), last, mirror_uv(net.end_point(i, true))));
@@ -217,12 +226,43 @@ pub fn footprint(spec: &HemisphereSpec) -> Footprint {
     }
 }
 
-fn rod(name: String, points: Vec<[f64; 3]>, subdivide: usize, normal: [f64; 3]) -> Rod {
+/// The polyline through `keys` with every segment split into equal edges no longer than
+/// `spacing / per_spacing`, and the index of each key in it.
+///
+/// Segments between crossings are exactly one spacing long and get `per_spacing` edges. End
+/// segments can be much shorter (at n = 12 the last crossing before the equator is 0.094
+/// spacings from the rod end): splitting them into as many edges as a full spacing would make
+/// edges a tenth as long, with ten times the round-off floor of the residual (stretching
+/// stiffness over edge length), which stalls Newton at subdivide 16.
+fn subdivided(keys: &[[f64; 3]], per_spacing: usize, spacing: f64) -> (Vec<[f64; 3]>, Vec<usize>) {
+    let mut points = Vec::new();
+    let mut at = Vec::with_capacity(keys.len());
+    for w in keys.windows(2) {
+        let (a, b) = (w[0], w[1]);
+        let length = ((b[0] - a[0]).powi(2) + (b[1] - a[1]).powi(2)).sqrt();
+        // The relative slack keeps a spacing computed with round-off at `per_spacing` edges.
+        let edges = ((per_spacing as f64 * length / spacing) * (1.0 - 1e-9))
+            .ceil()
+            .max(1.0) as usize;
+        at.push(points.len());
+        points.push(a);
+        for k in 1..edges {
+            let f = k as f64 / edges as f64;
+            points.push([a[0] + f * (b[0] - a[0]), a[1] + f * (b[1] - a[1]), 0.0]);
+        }
+    }
+    at.push(points.len());
+    points.push(keys[keys.len() - 1]);
+    (points, at)
+}
+
+fn rod(name: String, points: Vec<[f64; 3]>, normal: [f64; 3]) -> Rod {
     Rod {
         name,
         material: MATERIAL.to_string(),
         points,
-        subdivide,
+        // Subdivision is explicit in the points: segments have different lengths.
+        subdivide: 1,
         closed: false,
         normal: Some(normal),
     }
@@ -270,9 +310,23 @@ mod tests {
             for (k, rod) in fp.scene.rods.iter().enumerate() {
                 let l = net.half_lengths[k % n];
                 assert!((polyline_length(&rod.points) - 2.0 * l).abs() < 1e-12);
-                let interior = &rod.points[1..rod.points.len() - 1];
-                for w in interior.windows(2) {
-                    assert!((dist(w[0], w[1]) - net.spacing).abs() < 1e-12);
+                for w in rod.points.windows(2) {
+                    assert!(dist(w[0], w[1]) <= net.spacing / 2.0 * (1.0 + 1e-12));
+                }
+                // Neighbouring crossings on the rod, in order along it, are one spacing apart.
+                let mut on_rod: Vec<usize> = fp
+                    .scene
+                    .joints
+                    .iter()
+                    .flat_map(|j| j.at.iter())
+                    .filter(|(r, _)| *r == rod.name)
+                    .map(|(_, v)| *v)
+                    .collect();
+                on_rod.sort_unstable();
+                for w in on_rod.windows(2) {
+                    assert_eq!(w[1] - w[0], 2, "subdivide 2 between crossings");
+                    let d = dist(rod.points[w[0]], rod.points[w[1]]);
+                    assert!((d - net.spacing).abs() < 1e-12);
                 }
             }
             let inside = (0..n)
@@ -283,6 +337,23 @@ mod tests {
             assert_eq!(fp.crossings.len(), inside);
             crate::scene::validate::validate(&fp.scene).unwrap();
         }
+    }
+
+    #[test]
+    fn short_end_segments_keep_edges_near_the_requested_length() {
+        // n = 12 has end segments 0.094 spacings long; subdivide 16 asks for edges of a/16.
+        let fp = footprint(&HemisphereSpec::new(1.0, 12, 16));
+        let h = fp.net.spacing / 16.0;
+        let edges: Vec<f64> = fp
+            .scene
+            .rods
+            .iter()
+            .flat_map(|r| r.points.windows(2).map(|w| dist(w[0], w[1])))
+            .collect();
+        let longest = edges.iter().cloned().fold(0.0, f64::max);
+        let shortest = edges.iter().cloned().fold(f64::INFINITY, f64::min);
+        assert!(longest <= h * (1.0 + 1e-12), "{longest} > {h}");
+        assert!(shortest >= 0.5 * h, "{shortest} < {h}/2");
     }
 
     #[test]

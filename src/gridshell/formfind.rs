@@ -5,9 +5,13 @@
 //! flat grid is a saddle between the dome, its mirror image and mixed states, and rodnet's
 //! Newton solver starts badly there: the first continuation sub-step crushes the end edges
 //! (only the prescribed ends move), the increments shrink to ~1e-4 of the path, and near the
-//! flat saddle the regularized Newton steps crawl. Measured with an upward lift of 0.01–10 EI/R²
-//! on every joint instead (docs/gridshell.md): 200–330 iterations for the first of 8 load steps
-//! at n = 8, subdivide 4, and no convergence within 400 iterations at subdivide 8 or n = 16.
+//! flat saddle the line search finds no energy decrease and the solve stops (the saddle escape
+//! only runs once the residual is below tolerance). Measured with `rodnet solve` on footprint
+//! scenes (docs/gridshell.md): from the flat footprint 12 of 20 cases with n = 2–6, subdivide
+//! 1–8 stop at the saddle; the others leave it through the solver's negative-curvature escape,
+//! whose sign is not tied to "up". With an upward lift of 0.1 EI/R² on every joint, n = 8
+//! converges at subdivide 4 (221 iterations in the first of 8 load steps) but stops at the
+//! saddle at subdivide 8, and so does n = 16 at subdivide 4.
 //!
 //! So the symmetry is broken by the starting state instead. Before the solve, the footprint is
 //! bent onto a shallow spherical cap: the node with footprint coordinates (u, v) goes to the
