@@ -9,9 +9,10 @@
 //! z_j is the force (N) with which constraint j pushes along its unit gradient.
 //!
 //! The patterns of H and J never change during a solve, so the Clarabel solver is built once
-//! (equilibration, KKT symbolic factorization) and every later step only overwrites values.
-//! That requires presolve off and no dropped structural zeros (Clarabel refuses updates
-//! otherwise).
+//! (KKT pattern and symbolic factorization) and every later step only overwrites values. That
+//! requires presolve off and no dropped structural zeros (Clarabel refuses updates otherwise).
+//! The interior-point solution is then polished to the exact solution on its active set, using
+//! the Cholesky factor of H + τI that the Newton iteration has computed anyway.
 
 use std::time::Instant;
 
