@@ -60,7 +60,7 @@ pub struct StepQp {
 }
 
 /// Largest active set that is polished: the dense Schur complement costs a² memory and a³/3
-/// flops (0.3 s at a = 1000), and P⁻¹J_Aᵀ a·n memory and a triangular solve per row.
+/// flops (3e8 at a = 1000), and P⁻¹J_Aᵀ a·n memory and a triangular solve per row.
 const POLISH_MAX_ACTIVE: usize = 1000;
 /// Largest a·n (80 MB of P⁻¹J_Aᵀ columns).
 const POLISH_MAX_ENTRIES: usize = 10_000_000;
