@@ -222,3 +222,19 @@ fn bad_contact_input_is_located() {
         assert!(!err.contains("panicked"), "{name}: {err}");
     }
 }
+
+/// Obstacles but no free node to constrain (every node supported): no QP, and the results
+/// still carry an empty `contacts` list and a `kkt` block with no constraints.
+#[test]
+fn obstacles_without_free_nodes() {
+    let text = BASE.replace("subdivide: 4", "subdivide: 1").replace(
+        "Support(rod: \"a\", vertex: 0, kind: Clamp)",
+        "Support(rod: \"a\", vertex: 0, kind: Clamp), Support(rod: \"a\", vertex: 1, kind: Pin)",
+    );
+    let s = rodnet::scene::parse("t.ron", &text).unwrap();
+    let sol = solve_scene(&s, &settings_of(&s)).unwrap();
+    assert!(sol.report.converged);
+    assert!(sol.report.constraints.is_none());
+    assert_eq!(sol.results.contacts.as_ref().map(|c| c.len()), Some(0));
+    assert_eq!(sol.results.kkt.as_ref().map(|k| k.constraints), Some(0));
+}

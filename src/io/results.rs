@@ -230,12 +230,15 @@ impl Results {
             })
             .collect();
         let target = target.map(|t| sphere_metrics(net, t));
-        let (contacts, kkt) = match (&m.contact, &report.constraints) {
-            (Some(c), Some(cr)) => {
+        let (contacts, kkt) = match &m.contact {
+            Some(c) => {
+                // A scene whose constrained nodes are all supported has no rows and no QP.
+                let none = ConstraintReport::default();
+                let cr = report.constraints.as_ref().unwrap_or(&none);
                 let (contacts, kkt) = constraint_results(net, c, cr, &grad, report.tolerance);
                 (Some(contacts), Some(kkt))
             }
-            _ => (None, None),
+            None => (None, None),
         };
         Results {
             converged: report.converged,

@@ -7,6 +7,10 @@
 //! problem's admissible step. At a stationary point whose Hessian is not positive definite, the
 //! direction of most negative curvature (inverse iteration with the shifted factor) is followed
 //! downhill, so a perfectly straight compressed rod buckles instead of stalling at the saddle.
+//!
+//! A problem with inequality constraints (contact, bounds) replaces the Cholesky step by a QP
+//! with the same shifted Hessian whenever the unconstrained step would violate a linearized
+//! constraint (see `qp.rs` and docs/design.md); without constraints nothing of that runs.
 
 use std::time::Instant;
 
@@ -461,8 +465,9 @@ fn norm(v: &[f64]) -> f64 {
 }
 
 /// Backtracking Armijo search along x + αd (+ α²c when a correction is given), from the
-/// problem's largest admissible step; with constraints, infeasible trials are backtracked too. The accepted step is left in `trial`. Near convergence the
-/// energy decrease falls below round-off; a relative slack of a few ulps lets Newton finish there.
+/// problem's largest admissible step; with constraints, infeasible trials are backtracked too.
+/// The accepted step is left in `trial`. Near convergence the energy decrease falls below
+/// round-off; a relative slack of a few ulps lets Newton finish there.
 fn line_search<P: NewtonProblem>(
     p: &mut P,
     d: &[f64],
