@@ -152,30 +152,7 @@ fn split_cantilever_matches_single_rod() {
 #[test]
 fn elastic_joint_sweep_reaches_ball_and_rigid() {
     let n = 8;
-    let build = |kind: JointKind| {
-        let mut s = scene(
-            material_ei(1.0, 1e-2, 0.3),
-            vec![
-                rod(
-                    "x",
-                    vec![[0.0, 0.0, 0.0], [0.5, 0.0, 0.0], [2.0, 0.0, 0.0]],
-                    n,
-                ),
-                rod(
-                    "y",
-                    vec![[0.5, -1.0, 0.0], [0.5, 0.0, 0.0], [0.5, 0.5, 0.0]],
-                    n,
-                ),
-            ],
-        );
-        s.joints.push(joint("c", &[("x", 1), ("y", 1)], kind));
-        for r in ["x", "y"] {
-            s.supports.push(support(r, 0, SupportKind::Clamp));
-            s.supports.push(support(r, 2, SupportKind::Clamp));
-        }
-        s.loads.push(force("x", 1, [0.0, 0.0, -1e-3]));
-        s
-    };
+    let build = |kind: JointKind| clamped_crossing(kind, n);
     let w = |s: &Scene| {
         let sol = solve(s);
         (sol.results.joints[0].position[2], sol.report.iterations)
@@ -212,6 +189,33 @@ fn elastic_joint_sweep_reaches_ball_and_rigid() {
             );
         }
     }
+}
+
+/// Two rods clamped at both ends cross off-centre at a joint of `kind`; a vertical load of
+/// 1e-3 N acts at the crossing.
+fn clamped_crossing(kind: JointKind, n: usize) -> Scene {
+    let mut s = scene(
+        material_ei(1.0, 1e-2, 0.3),
+        vec![
+            rod(
+                "x",
+                vec![[0.0, 0.0, 0.0], [0.5, 0.0, 0.0], [2.0, 0.0, 0.0]],
+                n,
+            ),
+            rod(
+                "y",
+                vec![[0.5, -1.0, 0.0], [0.5, 0.0, 0.0], [0.5, 0.5, 0.0]],
+                n,
+            ),
+        ],
+    );
+    s.joints.push(joint("c", &[("x", 1), ("y", 1)], kind));
+    for r in ["x", "y"] {
+        s.supports.push(support(r, 0, SupportKind::Clamp));
+        s.supports.push(support(r, 2, SupportKind::Clamp));
+    }
+    s.loads.push(force("x", 1, [0.0, 0.0, -1e-3]));
+    s
 }
 
 /// Square frame of side s with rigid corners (a closed loop of four rods), no supports, pulled
@@ -367,30 +371,7 @@ fn ball_grid(p: f64, n: usize) -> Solution {
 /// axis lets the load swing the second rod like a pendulum.)
 #[test]
 fn hinge_transmits_out_of_plane_moments() {
-    let build = |kind: JointKind| {
-        let mut s = scene(
-            material_ei(1.0, 1e-2, 0.3),
-            vec![
-                rod(
-                    "x",
-                    vec![[0.0, 0.0, 0.0], [0.5, 0.0, 0.0], [2.0, 0.0, 0.0]],
-                    8,
-                ),
-                rod(
-                    "y",
-                    vec![[0.5, -1.0, 0.0], [0.5, 0.0, 0.0], [0.5, 0.5, 0.0]],
-                    8,
-                ),
-            ],
-        );
-        s.joints.push(joint("c", &[("x", 1), ("y", 1)], kind));
-        for r in ["x", "y"] {
-            s.supports.push(support(r, 0, SupportKind::Clamp));
-            s.supports.push(support(r, 2, SupportKind::Clamp));
-        }
-        s.loads.push(force("x", 1, [0.0, 0.0, -1e-3]));
-        solve(&s).results.joints[0].position[2]
-    };
+    let build = |kind: JointKind| solve(&clamped_crossing(kind, 8)).results.joints[0].position[2];
     let (rigid, hinge, ball) = (
         build(JointKind::Rigid),
         build(JointKind::Hinge),

@@ -345,6 +345,23 @@ pub fn build(scene: &Scene) -> Result<Network, FieldError> {
     let zero = alpha_base + table.n_alpha;
     let n_vars = zero + 1;
     let node_vars = |n: usize| [3 * n, 3 * n + 1, 3 * n + 2];
+    // Local variables of a vertex stencil: (x_prev, x_vertex, x_next, θ_in, θ_out).
+    let stencil_vars = |a: usize, b: usize, c: usize, e0: usize, e1: usize| -> [usize; 11] {
+        let (a, b, c) = (node_vars(a), node_vars(b), node_vars(c));
+        [
+            a[0],
+            a[1],
+            a[2],
+            b[0],
+            b[1],
+            b[2],
+            c[0],
+            c[1],
+            c[2],
+            theta_var(e0),
+            theta_var(e1),
+        ]
+    };
     let mut kinds = vec![VarKind::Angle; n_vars];
     kinds[..3 * n_nodes].fill(VarKind::Position);
     let mut fixed = vec![false; n_vars];
@@ -441,24 +458,14 @@ pub fn build(scene: &Scene) -> Result<Network, FieldError> {
                 continue;
             }
             let (ei, eo) = (rod.edges[(j + np - 1) % np], rod.edges[j % rod.edges.len()]);
-            let [a0, a1, a2] = node_vars(rod.nodes[(j + np - 1) % np]);
-            let [b0, b1, b2] = node_vars(rod.nodes[j]);
-            let [c0, c1, c2] = node_vars(rod.nodes[(j + 1) % np]);
-            let vars = [
-                a0,
-                a1,
-                a2,
-                b0,
-                b1,
-                b2,
-                c0,
-                c1,
-                c2,
-                theta_var(ei),
-                theta_var(eo),
-            ];
             let stencil = Stencil {
-                vars,
+                vars: stencil_vars(
+                    rod.nodes[(j + np - 1) % np],
+                    rod.nodes[j],
+                    rod.nodes[(j + 1) % np],
+                    ei,
+                    eo,
+                ),
                 edges: [ei, eo],
                 signs: [1.0, 1.0],
                 lengths: [rest_lengths[ei], rest_lengths[eo]],
@@ -481,23 +488,8 @@ pub fn build(scene: &Scene) -> Result<Network, FieldError> {
         } else {
             (rod_b.edges[nb - 1], rod_b.nodes[nb - 1], -1.0)
         };
-        let [a0, a1, a2] = node_vars(other_a);
-        let [b0, b1, b2] = node_vars(rod_a.nodes[na]);
-        let [c0, c1, c2] = node_vars(other_b);
         let stencil = Stencil {
-            vars: [
-                a0,
-                a1,
-                a2,
-                b0,
-                b1,
-                b2,
-                c0,
-                c1,
-                c2,
-                theta_var(ea),
-                theta_var(eb),
-            ],
+            vars: stencil_vars(other_a, rod_a.nodes[na], other_b, ea, eb),
             edges: [ea, eb],
             signs: [sa, sb],
             lengths: [rest_lengths[ea], rest_lengths[eb]],
