@@ -490,6 +490,7 @@ fn hemisphere_spec(a: &HemisphereArgs) -> Result<HemisphereSpec, String> {
         JointArg::Ball => JointChoice::Ball,
         JointArg::Hinge => JointChoice::Hinge,
         JointArg::Rigid => JointChoice::Rigid,
+        JointArg::Elastic => JointChoice::Elastic,
     };
     spec.section = a.section.scaled(a.radius);
     spec.young_modulus = a.young_modulus;

@@ -14,6 +14,8 @@ pub enum JointArg {
     Rigid,
     Hinge,
     Ball,
+    /// The VPS joint of Baek et al. 2018 scaled to the rods (docs/gridshell.md).
+    Elastic,
 }
 
 /// Options of `solve` that build the scene from an OBJ network instead of a scene file.
@@ -269,6 +271,9 @@ pub fn load(path: &std::path::Path, a: &NetworkArgs) -> Result<NetworkScene, Str
             JointArg::Rigid => JointKind::Rigid,
             JointArg::Hinge => JointKind::Hinge,
             JointArg::Ball => JointKind::Ball,
+            JointArg::Elastic => JointKind::from_elastic(
+                crate::network::joint::elastic::vps_joint(young_modulus, radius),
+            ),
         },
         subdivide: a.subdivide.unwrap_or(1),
         pin_below: a.pin_below,

@@ -20,14 +20,20 @@ pub enum JointChoice {
     Ball,
     Hinge,
     Rigid,
+    /// The VPS joint of Baek et al. scaled to the rods (`joint::elastic::vps_joint`).
+    Elastic,
 }
 
 impl JointChoice {
-    pub fn kind(self) -> JointKind {
+    /// Joint kind for rods of modulus `young` and outer radius `radius`.
+    pub fn kind(self, young: f64, radius: f64) -> JointKind {
         match self {
             JointChoice::Ball => JointKind::Ball,
             JointChoice::Hinge => JointKind::Hinge,
             JointChoice::Rigid => JointKind::Rigid,
+            JointChoice::Elastic => {
+                JointKind::from_elastic(crate::network::joint::elastic::vps_joint(young, radius))
+            }
         }
     }
 
@@ -36,6 +42,7 @@ impl JointChoice {
             JointChoice::Ball => "ball",
             JointChoice::Hinge => "hinge",
             JointChoice::Rigid => "rigid",
+            JointChoice::Elastic => "elastic",
         }
     }
 }
@@ -182,7 +189,9 @@ pub fn footprint(spec: &HemisphereSpec) -> Footprint {
                 joints.push(Joint {
                     name: format!("c{i}_{j}"),
                     at: vec![(u_rod_name(j), a), (v_rod_name(i), b)],
-                    kind: spec.joint.kind(),
+                    kind: spec
+                        .joint
+                        .kind(spec.young_modulus, spec.section.outer_radius()),
                     normal: None,
                 });
                 crossings.push(CrossingJoint { i, j });

@@ -19,6 +19,22 @@ use super::{joint_normal, Anchor, Coupling, PortBuild, PortTable, Site};
 use crate::math::vec::{cross, dot, normalize, scalef, sub};
 use crate::scene::types::ElasticJoint;
 
+/// The VPS joint of Baek et al. 2018 (cylinder E = 1.3 MPa, d = 3 mm, h = 5 mm, on Nitinol
+/// rods E = 83 GPa, d = 254 µm) scaled to rods of modulus `young` and radius `radius`, keeping
+/// the experiment's ratios E_joint/E_rod, d/r and h/r: the joint used by `--joint elastic`.
+pub fn vps_joint(young: f64, radius: f64) -> ElasticJoint {
+    let rod_radius = 127e-6;
+    ElasticJoint {
+        cylinder: Some(crate::scene::types::JointCylinder {
+            young_modulus: young * 1.3e6 / 83e9,
+            poisson_ratio: Some(0.5),
+            diameter: radius * 3e-3 / rod_radius,
+            height: radius * 5e-3 / rod_radius,
+        }),
+        ..Default::default()
+    }
+}
+
 /// (bending, twist, scissor) stiffnesses, N·m/rad.
 pub fn stiffnesses(e: &ElasticJoint) -> Result<[f64; 3], String> {
     let derived = e.cylinder.as_ref().map(|c| {
