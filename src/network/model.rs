@@ -101,6 +101,8 @@ pub struct Model {
     pub contact: Option<crate::network::contact::Contact>,
     slots: Slots,
     pub(crate) projector: crate::network::projection::LazyProjector,
+    /// Scratch copy of the variables for trial evaluations.
+    saved_q: Vec<f64>,
 }
 
 #[derive(Debug, Clone, Default)]
@@ -164,6 +166,7 @@ impl Model {
             contact: None,
             slots: Slots::default(),
             projector: Default::default(),
+            saved_q: Vec::new(),
         }
     }
 
@@ -264,25 +267,32 @@ impl Model {
     /// Gradient (over free variables) at the current state displaced by `alpha · step`,
     /// without committing; returns the energy there.
     pub fn trial_gradient(&mut self, step: &[f64], alpha: f64, grad: &mut [f64]) -> f64 {
-        let saved = self.state.q.clone();
-        self.displace(step, alpha);
-        let e = self.assemble(&mut Assembly {
-            grad,
-            full_grad: None,
-            hess: None,
-        });
-        self.state.q = saved;
-        e
+        self.displaced(step, alpha, |m| {
+            m.assemble(&mut Assembly {
+                grad,
+                full_grad: None,
+                hess: None,
+            })
+        })
     }
 
     /// Energy at the current state displaced by `alpha · step`, using the current reference
     /// frames (time-parallel transport from the last accepted iterate).
     pub fn trial_energy(&mut self, step: &[f64], alpha: f64) -> f64 {
-        let saved = self.state.q.clone();
+        self.displaced(step, alpha, |m| m.energy())
+    }
+
+    /// Evaluates `f` at the current state displaced by `alpha · step`, then restores the state
+    /// exactly; the saved copy reuses one buffer, so line searches do not allocate.
+    fn displaced<R>(&mut self, step: &[f64], alpha: f64, f: impl FnOnce(&Self) -> R) -> R {
+        let mut saved = std::mem::take(&mut self.saved_q);
+        saved.clear();
+        saved.extend_from_slice(&self.state.q);
         self.displace(step, alpha);
-        let e = self.energy();
-        self.state.q = saved;
-        e
+        let r = f(self);
+        std::mem::swap(&mut self.state.q, &mut saved);
+        self.saved_q = saved;
+        r
     }
 
     /// Accepts the current variables as the new iterate: edge reference frames are transported
