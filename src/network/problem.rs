@@ -107,6 +107,17 @@ impl NewtonProblem for Model {
         let sa = if da > 0.0 { 1e-2 / da } else { f64::INFINITY };
         sx.min(sa)
     }
+    fn unknown_scales(&self, scales: &mut [f64]) {
+        // Positions in units of the scene's length scale, angles in radians.
+        for (v, &f) in self.free.iter().enumerate() {
+            if f != FIXED {
+                scales[f as usize] = match self.kinds[v] {
+                    VarKind::Position => self.length_scale,
+                    VarKind::Angle => 1.0,
+                };
+            }
+        }
+    }
     fn num_constraints(&self) -> usize {
         self.contact.as_ref().map_or(0, |c| c.len())
     }
