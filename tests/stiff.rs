@@ -841,7 +841,21 @@ fn peak_rss_mib() -> f64 {
         .map_or(f64::NAN, |kb| kb / 1024.0)
 }
 
-/// The hemispherical gridshell at about 10⁵ nodes (n = 64 rods per family, subdivide 16 by
+static START: std::sync::OnceLock<Instant> = std::sync::OnceLock::new();
+
+/// Prints every 10th Newton iteration with the elapsed time and the peak memory so far.
+fn progress(step: usize, it: usize, res: f64, _energy: f64) {
+    if it.is_multiple_of(10) {
+        let t = START.get().map_or(0.0, |s| s.elapsed().as_secs_f64());
+        eprintln!(
+            "  load step {step}, iteration {it}, relative residual {res:.2e}, {t:.0} s, \
+             peak RSS {:.0} MiB",
+            peak_rss_mib()
+        );
+    }
+}
+
+/// The hemispherical gridshell at about 10⁵ nodes (n = 100 rods per family, subdivide 8 by
 /// default; `RODNET_BIG_RODS`, `RODNET_BIG_SUBDIVIDE` override): time and peak memory, as
 /// measured in docs/stiff.md. Run with
 /// `cargo test --release --test stiff -- --ignored --nocapture big_gridshell`.
@@ -855,7 +869,7 @@ fn big_gridshell() {
             .and_then(|v| v.parse().ok())
             .unwrap_or(d)
     };
-    let (n, k) = (var("RODNET_BIG_RODS", 64), var("RODNET_BIG_SUBDIVIDE", 16));
+    let (n, k) = (var("RODNET_BIG_RODS", 100), var("RODNET_BIG_SUBDIVIDE", 8));
     let spec = HemisphereSpec::new(1.0, n, k);
     let net = rodnet::network::build::build(&footprint(&spec).scene).unwrap();
     println!(
@@ -869,9 +883,13 @@ fn big_gridshell() {
     }
     drop(net);
     let t = Instant::now();
-    let r =
-        rodnet::gridshell::job::run(&spec, rodnet::gridshell::formfind::DEFAULT_START_CAP, None)
-            .unwrap();
+    let _ = START.set(t);
+    let r = rodnet::gridshell::job::run(
+        &spec,
+        rodnet::gridshell::formfind::DEFAULT_START_CAP,
+        Some(progress),
+    )
+    .unwrap();
     let secs = t.elapsed().as_secs_f64();
     let rep = &r.results.solver;
     println!(
