@@ -6,7 +6,7 @@
 //! their exact derivatives come from automatic differentiation.
 
 use crate::math::vec::*;
-use crate::math::Real;
+use crate::math::{Real, HD};
 
 /// Reference frame of an edge at the last accepted iterate.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -42,11 +42,51 @@ pub fn edge_frame_of<T: Real>(e: V3<T>, theta: T, r: &EdgeRef) -> EdgeFrame<T> {
     }
 }
 
+/// Unit tangent and the material directors at θ = 0 of an edge whose vector *along a stencil*
+/// is `along` (orientation as in [`oriented_frame_of`]): with θ' = sign·θ the material frame is
+/// m1 = cos θ' u + sin θ' v, m2 = cos θ' v − sin θ' u.
+pub struct RefFrame<T> {
+    pub t: V3<T>,
+    pub u: V3<T>,
+    pub v: V3<T>,
+}
+
+#[inline(always)]
+pub fn oriented_reference_frame<T: Real>(r: &EdgeRef, sign: f64, along: V3<T>) -> RefFrame<T> {
+    let t = normalize(scalef(along, sign));
+    let u = transport_from(r.t, t, r.u);
+    let v = cross(t, u);
+    RefFrame {
+        t: scalef(t, sign),
+        u,
+        v: scalef(v, sign),
+    }
+}
+
+impl<const N: usize> RefFrame<HD<N>> {
+    /// The frame as a function of `P` variables, its own being `offset..offset + N`.
+    pub fn embed<const P: usize>(&self, offset: usize) -> RefFrame<HD<P>> {
+        let z = HD::<P>::cst(0.0);
+        let mut f = RefFrame {
+            t: [z; 3],
+            u: [z; 3],
+            v: [z; 3],
+        };
+        for i in 0..3 {
+            self.t[i].embed_into(&mut f.t[i], offset);
+            self.u[i].embed_into(&mut f.u[i], offset);
+            self.v[i].embed_into(&mut f.v[i], offset);
+        }
+        f
+    }
+}
+
 /// Curvature binormal between unit tangents with |κb| = 2 sin(φ/2), φ the turning angle.
 ///
 /// DER's original 2 tan(φ/2) grows without bound as φ → π; the sine measure agrees with it to
 /// O(φ³), stays bounded by 2, and keeps the bending energy monotonic in φ up to a full fold, so
 /// energy, gradient and Hessian are finite at 175°.
+#[inline(always)]
 pub fn curvature_binormal<T: Real>(t0: V3<T>, t1: V3<T>) -> V3<T> {
     let c = dot(t0, t1);
     let f = ((c + 1.0) * 0.5).sqrt().recip();
@@ -61,7 +101,7 @@ pub fn material_curvature<T: Real>(kb: V3<T>, m1: V3<T>, m2: V3<T>) -> [T; 2] {
 
 /// Adds 2πk to `raw` so that the result is closest to `previous`: reference twist is continuous
 /// along a solve even when it exceeds π in magnitude.
-#[inline]
+#[inline(always)]
 pub fn unwrap_angle<T: Real>(raw: T, previous: f64) -> T {
     let two_pi = std::f64::consts::TAU;
     let k = ((previous - raw.val()) / two_pi).round();

@@ -24,6 +24,8 @@ use super::settings::{ConstraintReport, NewtonReport, NewtonSettings};
 const ATTEMPT_CAP: usize = 8;
 /// Smallest continuation increment, as a fraction of the whole load path.
 const MIN_INCREMENT: f64 = 1e-5;
+/// While the unshifted Hessian keeps failing to factor, it is retried every this many iterations.
+const UNSHIFTED_RETRY: usize = 8;
 
 /// What the search for negative curvature at a stationary point found.
 enum Saddle {
@@ -59,6 +61,7 @@ pub fn solve<P: NewtonProblem>(p: &mut P, s: &NewtonSettings) -> NewtonReport {
         c: vec![0.0; n],
         trial: vec![0.0; n],
         shift_memory: 0.0,
+        unshifted_failures: 0,
         report: NewtonReport {
             load_steps: steps,
             ..Default::default()
@@ -156,6 +159,8 @@ struct Newton {
     c: Vec<f64>,
     trial: Vec<f64>,
     shift_memory: f64,
+    /// Consecutive iterations whose unshifted factorization failed or was skipped.
+    unshifted_failures: usize,
     report: NewtonReport,
 }
 
@@ -211,7 +216,7 @@ impl Newton {
             let stalled = res >= 0.5 * last_res;
             last_res = res;
             if res < s.tolerance || (res < floor && stalled) {
-                let Some(shift) = qp_shift.or_else(|| self.factor_regularized()) else {
+                let Some(shift) = qp_shift.or_else(|| self.factor_regularized(true)) else {
                     return Outcome::Failed(format!(
                         "Hessian could not be regularized at load step {step}/{steps} (residual {res:.3e})"
                     ));
@@ -247,7 +252,7 @@ impl Newton {
                     s.tolerance
                 ));
             }
-            let Some(shift) = qp_shift.or_else(|| self.factor_regularized()) else {
+            let Some(shift) = qp_shift.or_else(|| self.factor_regularized(false)) else {
                 return Outcome::Failed(format!(
                     "Hessian could not be regularized at load step {step}/{steps}, iteration {it} \
                      (residual {res:.3e})"
@@ -341,7 +346,7 @@ impl Newton {
     /// current iterate. Returns the shift and the relative stationarity residual.
     fn constrained_step<P: NewtonProblem>(&mut self, p: &mut P) -> Result<(f64, f64), String> {
         let shift = self
-            .factor_regularized()
+            .factor_regularized(false)
             .ok_or_else(|| "Hessian could not be regularized".to_string())?;
         for i in 0..self.d.len() {
             self.d[i] = -self.g[i];
@@ -373,18 +378,32 @@ impl Newton {
     }
 
     /// Factors H + τI with the smallest τ of the sequence 0, τ₀, 10τ₀, … that succeeds.
-    fn factor_regularized(&mut self) -> Option<f64> {
+    ///
+    /// A Hessian that stays indefinite or singular (a free twist gauge, a loaded mechanism) fails
+    /// the unshifted factorization at every iteration, doubling the cost of each: after two
+    /// failures in a row τ = 0 is tried only every few iterations. `exact` always tries it (the
+    /// convergence test needs to know whether the unshifted Hessian is positive definite).
+    fn factor_regularized(&mut self, exact: bool) -> Option<f64> {
         let ts = Instant::now();
-        let r = self.factor_regularized_inner();
+        let try_unshifted =
+            exact || self.unshifted_failures < 2 || self.unshifted_failures % UNSHIFTED_RETRY == 0;
+        let r = self.factor_regularized_inner(try_unshifted);
+        if !try_unshifted {
+            self.unshifted_failures += 1;
+        }
         self.report.factor_seconds += ts.elapsed().as_secs_f64();
         r
     }
 
-    fn factor_regularized_inner(&mut self) -> Option<f64> {
-        self.report.factorizations += 1;
-        if self.chol.factor(0.0).is_ok() {
-            self.shift_memory *= 0.1;
-            return Some(0.0);
+    fn factor_regularized_inner(&mut self, try_unshifted: bool) -> Option<f64> {
+        if try_unshifted {
+            self.report.factorizations += 1;
+            if self.chol.factor(0.0).is_ok() {
+                self.shift_memory *= 0.1;
+                self.unshifted_failures = 0;
+                return Some(0.0);
+            }
+            self.unshifted_failures += 1;
         }
         let scale = self.chol.diagonal_scale().max(f64::MIN_POSITIVE);
         let mut tau = (1e-10 * scale).max(0.1 * self.shift_memory);
