@@ -385,8 +385,9 @@ impl Newton {
     /// convergence test needs to know whether the unshifted Hessian is positive definite).
     fn factor_regularized(&mut self, exact: bool) -> Option<f64> {
         let ts = Instant::now();
-        let try_unshifted =
-            exact || self.unshifted_failures < 2 || self.unshifted_failures % UNSHIFTED_RETRY == 0;
+        let try_unshifted = exact
+            || self.unshifted_failures < 2
+            || self.unshifted_failures.is_multiple_of(UNSHIFTED_RETRY);
         let r = self.factor_regularized_inner(try_unshifted);
         if !try_unshifted {
             self.unshifted_failures += 1;
