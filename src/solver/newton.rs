@@ -24,6 +24,10 @@ use super::settings::{ConstraintReport, NewtonReport, NewtonSettings};
 const ATTEMPT_CAP: usize = 8;
 /// Smallest continuation increment, as a fraction of the whole load path.
 const MIN_INCREMENT: f64 = 1e-5;
+/// Residual to which intermediate continuation sub-steps are converged (or the solve's tolerance
+/// if looser): their states only start the next sub-step, and a few digits are enough for that.
+/// Iterating them to round-off cost the gridshell's form finding about a third of its iterations.
+const INTERMEDIATE_TOLERANCE: f64 = 1e-6;
 /// While the unshifted Hessian keeps failing to factor, it is retried every this many iterations.
 const UNSHIFTED_RETRY: usize = 8;
 
@@ -73,21 +77,41 @@ pub fn solve<P: NewtonProblem>(p: &mut P, s: &NewtonSettings) -> NewtonReport {
     let mut lam = 0.0;
     let mut inc = 1.0 / steps as f64;
     let mut prev: Option<(f64, P::Snapshot)> = None;
+    // A start that is not in equilibrium at λ = 0 (a form-finding guess; a rest state always is)
+    // is equilibrated before the path starts: every sub-step then begins from an equilibrium, and
+    // the start's own imbalance is not mistaken for a too-large increment.
+    p.set_continuation(0.0);
+    let mut start_iterations = 0;
+    if p.assemble(&mut st.g, None).is_finite() && p.relative_residual(&st.g) > s.tolerance {
+        let intermediate = s.clone().tolerance(s.tolerance.max(INTERMEDIATE_TOLERANCE));
+        let saved = p.snapshot();
+        match st.iterate(p, &intermediate, ATTEMPT_CAP.max(s.max_iterations / 4), (0, steps)) {
+            Outcome::Converged(_) => st.report.substeps += 1,
+            // Not fatal: the path then starts from the guess itself, as it would without this.
+            Outcome::Failed(_) => {
+                st.report.retries += 1;
+                p.restore(&saved);
+            }
+        }
+        start_iterations = st.report.iterations;
+    }
     'steps: for k in 1..=steps {
         let target = k as f64 / steps as f64;
-        let its_before = st.report.iterations;
+        let its_before = st.report.iterations - if k == 1 { start_iterations } else { 0 };
         while lam < target {
             let mut next = (lam + inc).min(target);
             if target - next < 0.25 * inc {
                 next = target;
             }
             let saved = p.snapshot();
-            if let Some((lp, snap)) = &prev {
-                if lam > *lp {
+            match &prev {
+                Some((lp, snap)) if lam > *lp => {
                     p.extrapolate(snap, ((next - lam) / (lam - lp)).min(2.0));
+                    p.set_continuation(next);
                 }
+                Some(_) => p.set_continuation(next),
+                None => st.tangent_predict(p, lam, next),
             }
-            p.set_continuation(next);
             let minimal = inc <= MIN_INCREMENT * 1.0001;
             // `max_iterations` bounds the Newton iterations of a whole load step, sub-steps
             // and retries included.
@@ -100,7 +124,12 @@ pub fn solve<P: NewtonProblem>(p: &mut P, s: &NewtonSettings) -> NewtonReport {
             } else {
                 ATTEMPT_CAP.min(remaining)
             };
-            match st.iterate(p, s, cap, (k, steps)) {
+            let tolerance = if next == 1.0 {
+                s.tolerance
+            } else {
+                s.tolerance.max(INTERMEDIATE_TOLERANCE)
+            };
+            match st.iterate(p, &s.clone().tolerance(tolerance), cap, (k, steps)) {
                 Outcome::Converged(its) => {
                     st.report.substeps += 1;
                     prev = Some((lam, saved));
@@ -339,6 +368,37 @@ impl Newton {
                     "damped Newton steps at load step {step}/{steps} (residual {res:.3e})"
                 ));
             }
+        }
+    }
+
+    /// First sub-step of the path, from an equilibrium at `lam`: moves the free unknowns by the
+    /// linear response to the increment, δ = −H⁻¹ (g(λ_next) − g(λ)) at fixed free unknowns, so
+    /// that prescribed ends do not start by crushing their first edges. Kept only if it lowers
+    /// the energy at `next`. Later sub-steps use the secant through two equilibria instead (a
+    /// tangent predictor there cost the cantilever iterations; docs/design.md).
+    fn tangent_predict<P: NewtonProblem>(&mut self, p: &mut P, lam: f64, next: f64) {
+        let n = self.g.len();
+        if self.qp.is_some() {
+            // The linear response ignores contact and bounds: it could jump through an obstacle.
+            p.set_continuation(next);
+            return;
+        }
+        p.set_continuation(lam);
+        let e0 = p.assemble(&mut self.g, Some(&mut self.chol.values));
+        let factored = e0.is_finite() && self.factor_regularized(true).is_some();
+        p.set_continuation(next);
+        if !factored || n == 0 {
+            return;
+        }
+        let e1 = p.assemble(&mut self.d, None);
+        for i in 0..n {
+            self.d[i] = self.g[i] - self.d[i];
+        }
+        self.chol.solve(&mut self.d);
+        let alpha = p.max_step(&self.d).min(1.0);
+        let e = p.trial_energy(&self.d, alpha);
+        if e.is_finite() && e < e1 {
+            p.accept(&self.d, alpha);
         }
     }
 
