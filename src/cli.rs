@@ -105,8 +105,10 @@ pub struct HemisphereArgs {
     /// Poisson's ratio ν (shear modulus E/(2(1+ν))).
     #[arg(long, default_value_t = 0.3)]
     pub poisson_ratio: f64,
-    /// Continuation steps of the boundary motion (rodnet subdivides them as needed).
-    #[arg(long, default_value_t = 8)]
+    /// Steps of the ends through caps of growing curvature, from the starting cap to the
+    /// hemisphere (a step that does not converge is halved; with --start-cap 0, steps of the
+    /// solver's straight-line continuation).
+    #[arg(long, default_value_t = 1)]
     pub load_steps: usize,
     /// Relative residual tolerance (see docs/scene-format.md).
     #[arg(long, default_value_t = 1e-9)]
@@ -479,9 +481,9 @@ fn hemisphere_spec(a: &HemisphereArgs) -> Result<HemisphereSpec, String> {
     if !positive(a.tolerance) {
         return Err(format!("--tolerance must be positive, got {}", a.tolerance));
     }
-    if !(a.start_cap == 0.0 || (a.start_cap.is_finite() && a.start_cap > 1.0)) {
+    if !(a.start_cap == 0.0 || (a.start_cap.is_finite() && a.start_cap >= 1.0)) {
         return Err(format!(
-            "--start-cap must be 0 (flat start) or a finite ratio above 1, got {}",
+            "--start-cap must be 0 (flat start), 1 (the analytic net) or a finite ratio above 1, got {}",
             a.start_cap
         ));
     }

@@ -64,7 +64,7 @@ pub struct HemisphereSpec {
     /// Pa.
     pub young_modulus: f64,
     pub poisson_ratio: f64,
-    /// Continuation steps for the boundary motion.
+    /// Steps of the boundary motion (see `formfind`).
     pub load_steps: usize,
     pub tolerance: f64,
     pub max_iterations: usize,
@@ -91,7 +91,7 @@ impl HemisphereSpec {
             },
             young_modulus: 1e9,
             poisson_ratio: 0.3,
-            load_steps: 8,
+            load_steps: 1,
             tolerance: 1e-9,
             max_iterations: 400,
         }

@@ -18,15 +18,22 @@
 //! point r(u, v) of the Chebyshev net of a sphere of radius `start_cap · R`, rested on z = 0 at
 //! its lowest rod end. That net is isometric along its curves, so every rod keeps its length
 //! (up to chord versus arc, ~(l/R_cap)²/24 per edge) and every crossing stays a crossing: the
-//! start is an upward, unstretched bend of the footprint, not the answer. The ends then move on
-//! straight lines from the cap's rim to their equator points over the load steps. The last step
-//! is the pure problem (ends pinned on the equator, no load), so the cap only selects the
-//! branch: the equilibrium does not depend on it (docs/gridshell.md compares cap radii).
+//! start is an upward, unstretched bend of the footprint, not the answer.
+//!
+//! The ends then travel through the same family of isometric bendings: in load step k they sit
+//! on the net of the sphere whose curvature is the k-th of `load_steps` equal steps from
+//! 1/(start_cap·R) to 1/R, and every node starts the step displaced by the difference between
+//! the two nets (a predictor: the shell's departure from the net is carried over). Moving the
+//! ends along straight lines instead crushed their first edges and cost 60–100 Newton
+//! iterations in the first step alone. The last step is the pure problem (ends pinned on the
+//! equator, no load), so the path only selects the branch and starts Newton close: the
+//! equilibrium does not depend on it (docs/gridshell.md compares cap radii). `start_cap = 1`
+//! starts directly from the analytic net of the hemisphere.
 
 use std::time::Instant;
 
 use crate::gridshell::chebyshev::HemisphereNet;
-use crate::math::vec::{cross, norm, normalize, scalef};
+use crate::math::vec::{cross, dot, norm, normalize, scalef};
 use crate::network::build::Network;
 use crate::solver::{self, NewtonReport, NewtonSettings};
 
@@ -42,9 +49,9 @@ pub struct FormFinding {
 
 /// Form-finds `network` in place. It must be built from a footprint scene of radius `radius`
 /// (rods flat in z = 0 with their net parameters as (x, y), ends with `move_to`).
-/// `start_cap` is the starting cap's radius over R; 0 starts from the flat footprint itself
-/// (no symmetry breaking: for studies of the solver). `settings.load_steps` steps move the
-/// ends from the cap's rim to the equator.
+/// `start_cap` ≥ 1 is the starting cap's radius over R (1: the analytic net itself); 0 starts
+/// from the flat footprint and moves the ends on straight lines by the solver's continuation
+/// (no symmetry breaking: for studies of the solver).
 pub fn form_find(
     network: &mut Network,
     settings: &NewtonSettings,
@@ -52,52 +59,163 @@ pub fn form_find(
     start_cap: f64,
 ) -> FormFinding {
     let t0 = Instant::now();
-    let model = &mut network.model;
-    if start_cap > 0.0 {
-        let cap = HemisphereNet::new(start_cap * radius, 1);
-        let q = &mut model.state.q;
-        let nodes = network.n_nodes;
-        let flat = q[..3 * nodes].to_vec();
-        let mut lowest = f64::INFINITY;
-        for n in 0..nodes {
-            let p = cap.point(flat[3 * n], flat[3 * n + 1]);
-            q[3 * n..3 * n + 3].copy_from_slice(&p);
-            lowest = lowest.min(p[2]);
-        }
-        // Joint frames (Rigid, Hinge) turn with the surface, from the plane's normal z to the
-        // cap's normal at their node, so that the guess does not twist the rods against them.
-        let mut turned = vec![false; model.state.frames.len()];
-        for fb in &model.terms.frame_bend {
-            let f = fb.port.frame;
-            if !std::mem::replace(&mut turned[f], true) {
-                let node = fb.vars[0] / 3;
-                let normal = normalize([q[3 * node], q[3 * node + 1], q[3 * node + 2]]);
-                model.state.frames[f].commit(rotation_from_z(normal));
-            }
-        }
-        // Rest the cap on z = 0 at its lowest node, a rod end.
-        for n in 0..nodes {
-            q[3 * n + 2] -= lowest;
-        }
-        for p in &mut model.prescribed {
-            p.start = q[p.var];
-        }
-        // Edge reference frames follow the new tangents before the first assembly.
-        model.commit();
-    }
-    let report = solver::solve(model, settings);
+    let report = if start_cap > 0.0 {
+        cap_path(network, settings, radius, start_cap)
+    } else {
+        solver::solve(&mut network.model, settings)
+    };
     FormFinding {
         report,
         seconds: t0.elapsed().as_secs_f64(),
     }
 }
 
-/// Rotation vector of the smallest rotation taking the z axis to the unit vector `n`.
-fn rotation_from_z(n: [f64; 3]) -> [f64; 3] {
-    let axis = cross([0.0, 0.0, 1.0], n);
+/// Node positions on the Chebyshev net of the sphere of radius `rho` (resting on z = 0 at the
+/// lowest node) and the sphere's unit normals there.
+fn on_cap(rho: f64, flat: &[f64]) -> (Vec<[f64; 3]>, Vec<[f64; 3]>) {
+    let cap = HemisphereNet::new(rho, 1);
+    let mut pos: Vec<[f64; 3]> = flat.chunks(3).map(|x| cap.point(x[0], x[1])).collect();
+    let normals = pos.iter().map(|&p| normalize(p)).collect();
+    let lowest = pos.iter().map(|p| p[2]).fold(f64::INFINITY, f64::min);
+    for p in &mut pos {
+        p[2] -= lowest;
+    }
+    (pos, normals)
+}
+
+/// Halvings of a cap step that fails to converge before the form finding gives up.
+const MAX_CAP_HALVINGS: usize = 12;
+
+fn cap_path(
+    network: &mut Network,
+    settings: &NewtonSettings,
+    radius: f64,
+    start_cap: f64,
+) -> NewtonReport {
+    let model = &mut network.model;
+    let nodes = network.n_nodes;
+    let flat = model.state.q[..3 * nodes].to_vec();
+    let ends: Vec<f64> = model.prescribed.iter().map(|p| p.end).collect();
+    let steps = if start_cap > 1.0 {
+        settings.load_steps.max(1)
+    } else {
+        0
+    };
+    let (k0, k1) = (1.0 / (start_cap * radius), 1.0 / radius);
+    let mut total = NewtonReport {
+        load_steps: steps.max(1),
+        converged: true,
+        ..Default::default()
+    };
+    // Path parameter s ∈ [0, 1] (curvature k0 + s (k1 − k0)); pending targets, nearest last.
+    let mut pending: Vec<f64> = (0..=steps)
+        .rev()
+        .map(|k| k as f64 / steps.max(1) as f64)
+        .collect();
+    let mut done: Option<(f64, Vec<[f64; 3]>, Vec<[f64; 3]>)> = None;
+    let mut halvings = 0;
+    while let Some(&s_next) = pending.last() {
+        let last = s_next == 1.0;
+        let rho = if last {
+            radius
+        } else {
+            1.0 / (k0 + (k1 - k0) * s_next)
+        };
+        let (pos, normals) = on_cap(rho, &flat);
+        let saved = model.state.clone();
+        let q = &mut model.state.q;
+        match &done {
+            None => {
+                for (n, p) in pos.iter().enumerate() {
+                    q[3 * n..3 * n + 3].copy_from_slice(p);
+                }
+            }
+            Some((_, old, _)) => {
+                for n in 0..nodes {
+                    for c in 0..3 {
+                        q[3 * n + c] += pos[n][c] - old[n][c];
+                    }
+                }
+            }
+        }
+        // Joint frames (Rigid, Hinge) turn with the surface normal, so that the guess does not
+        // twist the rods against them.
+        let from = |n: usize| done.as_ref().map_or([0.0, 0.0, 1.0], |(_, _, nr)| nr[n]);
+        let mut turned = vec![false; model.state.frames.len()];
+        for fb in &model.terms.frame_bend {
+            let f = fb.port.frame;
+            if !std::mem::replace(&mut turned[f], true) {
+                let node = fb.vars[0] / 3;
+                model.state.frames[f].commit(rotation_between(from(node), normals[node]));
+            }
+        }
+        // The ends sit on this cap for the whole step (the scene's own targets in the last).
+        for (p, &end) in model.prescribed.iter_mut().zip(&ends) {
+            let x = if last { end } else { model.state.q[p.var] };
+            model.state.q[p.var] = x;
+            p.start = x;
+            p.end = x;
+        }
+        // Edge reference frames follow the new tangents before the first assembly.
+        model.commit();
+        let tolerance = if last {
+            settings.tolerance
+        } else {
+            settings.tolerance.max(1e-6)
+        };
+        let r = solver::solve(model, &settings.clone().load_steps(1).tolerance(tolerance));
+        merge(&mut total, &r);
+        if r.converged {
+            pending.pop();
+            done = Some((s_next, pos, normals));
+            continue;
+        }
+        // A cap step too far for Newton: retry from the last equilibrium through the cap halfway.
+        let s_prev = done.as_ref().map(|d| d.0);
+        if let (Some(s_prev), true) = (s_prev, halvings < MAX_CAP_HALVINGS) {
+            halvings += 1;
+            total.retries += 1;
+            model.state = saved;
+            pending.push(0.5 * (s_prev + s_next));
+            continue;
+        }
+        let why = r.message.as_deref().unwrap_or("no convergence");
+        total.message = Some(format!(
+            "form finding stopped on the cap of radius {rho:.4} m (path parameter {s_next:.4}): {why}"
+        ));
+        total.converged = false;
+        break;
+    }
+    for (p, &end) in model.prescribed.iter_mut().zip(&ends) {
+        p.end = end;
+    }
+    total
+}
+
+/// Adds one cap step's solve to the form finding's report (the last step's state fields win).
+fn merge(total: &mut NewtonReport, r: &NewtonReport) {
+    total.iterations += r.iterations;
+    total.factorizations += r.factorizations;
+    total.regularized_iterations += r.regularized_iterations;
+    total.saddle_escapes += r.saddle_escapes;
+    total.substeps += r.substeps;
+    total.retries += r.retries;
+    total.seconds += r.seconds;
+    total.factor_seconds += r.factor_seconds;
+    total.step_iterations.push(r.iterations);
+    total.residual = r.residual;
+    total.energy = r.energy;
+    total.stable = r.stable;
+    total.residual_floor = r.residual_floor;
+    total.tolerance = r.tolerance;
+}
+
+/// Rotation vector of the smallest rotation taking the unit vector `a` to the unit vector `b`.
+fn rotation_between(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    let axis = cross(a, b);
     let s = norm(axis);
     if s == 0.0 {
         return [0.0; 3];
     }
-    scalef(axis, s.atan2(n[2]) / s)
+    scalef(axis, s.atan2(dot(a, b)) / s)
 }

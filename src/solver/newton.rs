@@ -85,7 +85,7 @@ pub fn solve<P: NewtonProblem>(p: &mut P, s: &NewtonSettings) -> NewtonReport {
     if p.assemble(&mut st.g, None).is_finite() && p.relative_residual(&st.g) > s.tolerance {
         let intermediate = s.clone().tolerance(s.tolerance.max(INTERMEDIATE_TOLERANCE));
         let saved = p.snapshot();
-        match st.iterate(p, &intermediate, ATTEMPT_CAP.max(s.max_iterations / 4), (0, steps)) {
+        match st.iterate(p, &intermediate, s.max_iterations, (0, steps)) {
             Outcome::Converged(_) => st.report.substeps += 1,
             // Not fatal: the path then starts from the guess itself, as it would without this.
             Outcome::Failed(_) => {
@@ -97,7 +97,9 @@ pub fn solve<P: NewtonProblem>(p: &mut P, s: &NewtonSettings) -> NewtonReport {
     }
     'steps: for k in 1..=steps {
         let target = k as f64 / steps as f64;
-        let its_before = st.report.iterations - if k == 1 { start_iterations } else { 0 };
+        // The start's equilibration has its own budget but is reported with the first step.
+        let its_before = st.report.iterations;
+        let reported_before = its_before - if k == 1 { start_iterations } else { 0 };
         while lam < target {
             let mut next = (lam + inc).min(target);
             if target - next < 0.25 * inc {
@@ -143,7 +145,7 @@ pub fn solve<P: NewtonProblem>(p: &mut P, s: &NewtonSettings) -> NewtonReport {
                         st.fail(msg);
                         st.report
                             .step_iterations
-                            .push(st.report.iterations - its_before);
+                            .push(st.report.iterations - reported_before);
                         break 'steps;
                     }
                     st.report.retries += 1;
@@ -154,7 +156,7 @@ pub fn solve<P: NewtonProblem>(p: &mut P, s: &NewtonSettings) -> NewtonReport {
         }
         st.report
             .step_iterations
-            .push(st.report.iterations - its_before);
+            .push(st.report.iterations - reported_before);
         if k == steps {
             st.report.converged = st.report.message.is_none();
         }
