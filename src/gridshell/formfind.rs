@@ -72,7 +72,7 @@ pub fn form_find(
 
 /// Node positions on the Chebyshev net of the sphere of radius `rho` (resting on z = 0 at the
 /// lowest node) and the sphere's unit normals there.
-fn on_cap(rho: f64, flat: &[f64]) -> (Vec<[f64; 3]>, Vec<[f64; 3]>) {
+fn on_cap(rho: f64, flat: &[f64]) -> (CapNodes, CapNodes) {
     let cap = HemisphereNet::new(rho, 1);
     let mut pos: Vec<[f64; 3]> = flat.chunks(3).map(|x| cap.point(x[0], x[1])).collect();
     let normals = pos.iter().map(|&p| normalize(p)).collect();
@@ -82,6 +82,9 @@ fn on_cap(rho: f64, flat: &[f64]) -> (Vec<[f64; 3]>, Vec<[f64; 3]>) {
     }
     (pos, normals)
 }
+
+/// Node positions or normals on one cap.
+type CapNodes = Vec<[f64; 3]>;
 
 /// Halvings of a cap step that fails to converge before the form finding gives up.
 const MAX_CAP_HALVINGS: usize = 12;
@@ -112,7 +115,7 @@ fn cap_path(
         .rev()
         .map(|k| k as f64 / steps.max(1) as f64)
         .collect();
-    let mut done: Option<(f64, Vec<[f64; 3]>, Vec<[f64; 3]>)> = None;
+    let mut done: Option<(f64, CapNodes, CapNodes)> = None;
     let mut halvings = 0;
     while let Some(&s_next) = pending.last() {
         let last = s_next == 1.0;
