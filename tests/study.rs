@@ -252,6 +252,11 @@ fn bad_input_is_refused_before_solving_and_writes_nothing() {
             vec!["tests/bad_scenes/unknown_material.ron"],
             "unknown_material.ron:7:",
         ),
+        // Found by the builder, not the validator.
+        (
+            vec!["tests/bad_scenes/joint_points_apart.ron"],
+            "joint_points_apart.ron:10:26: joints[0].at: entry 1",
+        ),
         (
             vec![&huge, "--levels", "4"],
             "rods[0].subdivide: the scene would have more than 2000000 nodes",

@@ -115,8 +115,8 @@ impl Level {
     }
 }
 
-/// Checks the levels and builds every level's scene, so that bad input (including a level over
-/// the node limit) is refused before anything is solved.
+/// Checks the levels, and generates, validates and builds every level's scene, so that bad input
+/// (including a level over the node limit) is refused before anything is solved.
 pub fn plan(problem: &Problem, levels: usize) -> Result<Plan, String> {
     let has_reference =
         matches!(problem, Problem::Scene { scene, .. } if scene.reference.is_some());
@@ -158,6 +158,12 @@ pub fn plan(problem: &Problem, levels: usize) -> Result<Plan, String> {
                 validate::validate(&s).map_err(|e| describe(level, &e))?;
                 scenes.push(s);
             }
+            // The builder checks what depends on the nodes (joint positions, hinge axes, rest
+            // shape outside the obstacles), and finer levels have new nodes. It allocates, so it
+            // runs once every level has passed the cheap checks (the node limit).
+            for (i, s) in scenes.iter().enumerate() {
+                build(s).map_err(|e| describe(i + 1, &e))?;
+            }
             let (mut probes, mut rest) = (Vec::new(), Vec::new());
             for r in &scene.rods {
                 for (k, p) in r.points.iter().enumerate() {
@@ -197,14 +203,16 @@ pub fn plan(problem: &Problem, levels: usize) -> Result<Plan, String> {
                     .checked_mul(1 << (level - 1))
                     .ok_or_else(|| format!("--subdivide overflows at {}", at(level)))?;
                 let fp = footprint(&s);
-                validate::validate(&fp.scene).map_err(|e| {
-                    format!(
-                        "the generated scene is invalid at {}: {}: {}",
-                        at(level),
-                        e.path(),
-                        e.message
-                    )
-                })?;
+                validate::validate(&fp.scene)
+                    .and_then(|_| build(&fp.scene).map(drop))
+                    .map_err(|e| {
+                        format!(
+                            "the generated scene is invalid at {}: {}: {}",
+                            at(level),
+                            e.path(),
+                            e.message
+                        )
+                    })?;
                 base.get_or_insert(fp.scene);
                 specs.push(s);
             }
@@ -270,8 +278,8 @@ impl Plan {
         let (network, results, seconds, reference_error) = match &self.levels {
             Levels::Scenes(scenes) => {
                 let scene = &scenes[index];
-                // Validated in `plan`; building checks nothing that validation has not.
-                let mut network = build(scene).expect("a validated scene builds");
+                // `plan` built every level, and building is deterministic.
+                let mut network = build(scene).expect("built in `plan`");
                 let mut settings = settings_of(scene);
                 settings.progress = progress;
                 let t0 = Instant::now();
@@ -283,7 +291,7 @@ impl Plan {
             }
             Levels::Hemisphere { specs, start_cap } => {
                 let run = gridshell_job::run(&specs[index], *start_cap, progress)
-                    .expect("a validated footprint builds");
+                    .expect("built in `plan`");
                 // The form finding's own clock: the cap start and the solve.
                 let seconds = run.form.seconds;
                 (run.network, run.results, seconds, None)

@@ -108,7 +108,9 @@ pub fn error_vs_time(
         .ok_or("no level has a positive error to plot")?;
     let (ylo, yhi) = log_range(points().filter(usable).map(|p| p.2)).expect("same points");
     let (w, h) = (width as usize, height as usize);
-    let (left, right, top, bottom) = (100.0, 24.0, 64.0, 64.0);
+    // The legend goes above the axes, where it cannot hide a point.
+    let top = 44.0 + 22.0 * series.len() as f64;
+    let (left, right, bottom) = (100.0, 24.0, 64.0);
     let (pw, ph) = (width as f64 - left - right, height as f64 - top - bottom);
     let px = |t: f64| (left + (t.log10() - xlo) / (xhi - xlo) * pw).round() as i32;
     let py = |e: f64| (top + (yhi - e.log10()) / (yhi - ylo) * ph).round() as i32;
@@ -174,14 +176,20 @@ pub fn error_vs_time(
                     } else {
                         format!("L{} NOT CONVERGED", p.0)
                     };
-                    labels.push((at.0 + 10, at.1 - 18, s.colour, text));
+                    // Left of the point when it would run past the axes.
+                    let tw = text_width(&text, 2) as i32;
+                    let x = if at.0 + 10 + tw > x1 {
+                        at.0 - 10 - tw
+                    } else {
+                        at.0 + 10
+                    };
+                    labels.push((x, at.1 - 18, s.colour, text));
                 }
             }
         }
-        // Legend, top right inside the axes.
         for (k, s) in series.iter().enumerate() {
-            let y = y0 + 14 + 22 * k as i32;
-            let x = x1 - 14 - text_width(&s.name, 2) as i32;
+            let y = 34 + 22 * k as i32;
+            let x = x1 - text_width(&s.name, 2) as i32;
             let c = RGBColor(s.colour[0], s.colour[1], s.colour[2]);
             let marker = if s.labelled {
                 Circle::new((x - 16, y + 6), 5, c.filled())
@@ -198,7 +206,7 @@ pub fn error_vs_time(
         draw_text(&mut buf, w, h, x, y, 2, *c, s);
     }
     draw_text(&mut buf, w, h, 12, 10, 2, TEXT, title);
-    draw_text(&mut buf, w, h, 12, 38, 2, TEXT, "ERROR (LOG)");
+    draw_text(&mut buf, w, h, 12, top as u32 - 22, 2, TEXT, "ERROR (LOG)");
     let xl = "WALL TIME OF THE SOLVE, S (LOG)";
     let xw = text_width(xl, 2);
     draw_text(
