@@ -3,6 +3,7 @@
 mod network;
 mod plot;
 pub mod progress;
+mod study;
 
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
@@ -19,6 +20,7 @@ use crate::scene::{self, FieldError, Scene, SceneError};
 
 pub use network::{JointArg, NetworkArgs};
 pub use plot::PlotArgs;
+pub use study::{ConvergenceArgs, StudyCommand};
 
 #[derive(Parser, Debug)]
 #[command(
@@ -61,6 +63,11 @@ pub enum Command {
     Gridshell {
         #[command(subcommand)]
         shape: GridshellCommand,
+    },
+    /// Studies that solve a problem many times: convergence under subdivision.
+    Study {
+        #[command(subcommand)]
+        study: StudyCommand,
     },
 }
 
@@ -220,6 +227,9 @@ pub fn run(cli: Cli) -> i32 {
             shape: GridshellCommand::Hemisphere(args),
         } => hemisphere(args),
         Command::Plot(args) => plot::run(&args),
+        Command::Study {
+            study: StudyCommand::Convergence(args),
+        } => study::run(&args),
     }
 }
 

@@ -222,6 +222,7 @@ pub fn footprint(spec: &HemisphereSpec) -> Footprint {
             center: [0.0; 3],
             radius: spec.radius,
         }),
+        reference: None,
         solver: Solver {
             tolerance: spec.tolerance,
             max_iterations: spec.max_iterations,
