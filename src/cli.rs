@@ -11,7 +11,7 @@ use std::path::{Path, PathBuf};
 use clap::{Args, Parser, Subcommand};
 
 use crate::gridshell::footprint::{self, HemisphereSpec, JointChoice};
-use crate::gridshell::formfind::DEFAULT_START_CAP;
+use crate::gridshell::formfind::{FormPath, DEFAULT_START_CAP};
 use crate::gridshell::job as gridshell_job;
 use crate::io::{atomic, csv, obj};
 use crate::job;
@@ -20,6 +20,13 @@ use crate::scene::{self, FieldError, Scene, SceneError};
 
 pub use network::{JointArg, NetworkArgs};
 pub use plot::PlotArgs;
+
+/// `--path` of `rodnet gridshell hemisphere`.
+#[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PathArg {
+    CapNets,
+    Straight,
+}
 pub use study::{ConvergenceArgs, StudyCommand};
 
 #[derive(Parser, Debug)]
@@ -124,6 +131,10 @@ pub struct HemisphereArgs {
     /// without stretching) to break the up-down symmetry; 0 starts from the flat footprint.
     #[arg(long, default_value_t = DEFAULT_START_CAP)]
     pub start_cap: f64,
+    /// How the rod ends travel from the starting cap to the equator: through the nets of caps
+    /// of growing curvature, or on straight lines (docs/gridshell.md).
+    #[arg(long, value_enum, default_value_t = PathArg::CapNets)]
+    pub path: PathArg,
     /// Write the footprint scene (RON) here; alone, without other outputs, nothing is solved.
     #[arg(long)]
     pub scene_out: Option<PathBuf>,
@@ -498,6 +509,10 @@ fn hemisphere_spec(a: &HemisphereArgs) -> Result<HemisphereSpec, String> {
         ));
     }
     let mut spec = HemisphereSpec::new(a.radius, a.rods, a.subdivide);
+    spec.path = match a.path {
+        PathArg::CapNets => FormPath::CapNets,
+        PathArg::Straight => FormPath::Straight,
+    };
     spec.joint = match a.joint {
         JointArg::Ball => JointChoice::Ball,
         JointArg::Hinge => JointChoice::Hinge,

@@ -166,7 +166,7 @@ fn a_cap_step_that_fails_is_halved_and_reaches_the_same_dome() {
     let reference = run(&spec, DEFAULT_START_CAP, None).unwrap();
     assert!(reference.results.converged);
     assert_eq!(reference.form.report.retries, 0);
-    spec.max_iterations = 8;
+    spec.max_iterations = 5;
     let halved = run(&spec, DEFAULT_START_CAP, None).unwrap();
     assert!(
         halved.results.converged,

@@ -66,6 +66,8 @@ pub struct HemisphereSpec {
     pub poisson_ratio: f64,
     /// Steps of the boundary motion (see `formfind`).
     pub load_steps: usize,
+    /// How the ends travel from the starting cap to the equator.
+    pub path: crate::gridshell::formfind::FormPath,
     pub tolerance: f64,
     pub max_iterations: usize,
 }
@@ -92,6 +94,7 @@ impl HemisphereSpec {
             young_modulus: 1e9,
             poisson_ratio: 0.3,
             load_steps: 1,
+            path: Default::default(),
             tolerance: 1e-9,
             max_iterations: 400,
         }

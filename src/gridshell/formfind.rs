@@ -20,26 +20,45 @@
 //! (up to chord versus arc, ~(l/R_cap)²/24 per edge) and every crossing stays a crossing: the
 //! start is an upward, unstretched bend of the footprint, not the answer.
 //!
-//! The ends then travel through the same family of isometric bendings: in load step k they sit
-//! on the net of the sphere whose curvature is the k-th of `load_steps` equal steps from
-//! 1/(start_cap·R) to 1/R, and every node starts the step displaced by the difference between
-//! the two nets (a predictor: the shell's departure from the net is carried over). Moving the
-//! ends along straight lines instead crushed their first edges and cost 60–100 Newton
-//! iterations in the first step alone. The last step is the pure problem (ends pinned on the
-//! equator, no load), so the path only selects the branch and starts Newton close: the
-//! equilibrium does not depend on it (docs/gridshell.md compares cap radii). `start_cap = 1`
-//! starts directly from the analytic net of the hemisphere.
+//! Two paths lead from there to the hemisphere (`FormPath`):
+//! - `CapNets` (default): the ends travel through the same family of isometric bendings. In
+//!   each of `load_steps` steps they sit on the net of the sphere whose curvature is the next of
+//!   equal steps from 1/(start_cap·R) to 1/R, and the nodes start the step on that net (twist
+//!   angles and joint frames carry over from the last equilibrium). Each step is then a plain
+//!   equilibration at fixed ends; one that does not converge is halved from the last
+//!   equilibrium. The nets are only starting guesses: the shell's equilibrium departs from them
+//!   by a few percent of R and Newton finds it. Carrying the last equilibrium's departure from
+//!   its net over as a predictor was tried and cost more iterations (n = 12, K = 4: 16 against
+//!   14).
+//! - `Straight`: the ends move on straight lines from the cap's rim to their equator points, by
+//!   the solver's adaptive continuation, and nothing but the starting cap uses the analytic net.
+//!   Slower (about 100 Newton iterations for n = 12, K = 4): the first sub-step crushes the end
+//!   edges while the grid stands still.
+//!
+//! The last step is the pure problem (ends pinned on the equator, no load), so the path only
+//! selects the branch and starts Newton close: the equilibrium does not depend on it
+//! (docs/gridshell.md compares cap radii and paths). `start_cap = 1` starts directly from the
+//! analytic net of the hemisphere.
 
 use std::time::Instant;
 
 use crate::gridshell::chebyshev::HemisphereNet;
 use crate::math::vec::{cross, dot, norm, normalize, scalef};
 use crate::network::build::Network;
+use crate::network::model::Model;
 use crate::solver::{self, NewtonReport, NewtonSettings};
 
 /// Radius of the starting cap over R. Larger radii start flatter and need more iterations
 /// (see docs/gridshell.md); the equilibrium is the same.
 pub const DEFAULT_START_CAP: f64 = 5.0;
+
+/// How the rod ends get from the starting cap to the equator (see the module doc).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum FormPath {
+    #[default]
+    CapNets,
+    Straight,
+}
 
 pub struct FormFinding {
     pub report: NewtonReport,
@@ -57,11 +76,15 @@ pub fn form_find(
     settings: &NewtonSettings,
     radius: f64,
     start_cap: f64,
+    path: FormPath,
 ) -> FormFinding {
     let t0 = Instant::now();
-    let report = if start_cap > 0.0 {
+    let report = if start_cap > 0.0 && path == FormPath::CapNets {
         cap_path(network, settings, radius, start_cap)
     } else {
+        if start_cap > 0.0 {
+            onto_cap(network, start_cap * radius);
+        }
         solver::solve(&mut network.model, settings)
     };
     FormFinding {
@@ -115,8 +138,12 @@ fn cap_path(
         .rev()
         .map(|k| k as f64 / steps.max(1) as f64)
         .collect();
+    // The last equilibrium's path parameter, net positions and normals.
     let mut done: Option<(f64, CapNodes, CapNodes)> = None;
     let mut halvings = 0;
+    // After a failure, steps continue from the last equilibrium instead of restarting from a
+    // net, so that halving them brings Newton's start closer.
+    let mut carry = false;
     while let Some(&s_next) = pending.last() {
         let last = s_next == 1.0;
         let rho = if last {
@@ -126,32 +153,22 @@ fn cap_path(
         };
         let (pos, normals) = on_cap(rho, &flat);
         let saved = model.state.clone();
-        let q = &mut model.state.q;
-        match &done {
-            None => {
-                for (n, p) in pos.iter().enumerate() {
-                    q[3 * n..3 * n + 3].copy_from_slice(p);
-                }
-            }
-            Some((_, old, _)) => {
+        match (&done, carry) {
+            (Some((_, old, _)), true) => {
                 for n in 0..nodes {
                     for c in 0..3 {
-                        q[3 * n + c] += pos[n][c] - old[n][c];
+                        model.state.q[3 * n + c] += pos[n][c] - old[n][c];
                     }
                 }
             }
-        }
-        // Joint frames (Rigid, Hinge) turn with the surface normal, so that the guess does not
-        // twist the rods against them.
-        let from = |n: usize| done.as_ref().map_or([0.0, 0.0, 1.0], |(_, _, nr)| nr[n]);
-        let mut turned = vec![false; model.state.frames.len()];
-        for fb in &model.terms.frame_bend {
-            let f = fb.port.frame;
-            if !std::mem::replace(&mut turned[f], true) {
-                let node = fb.vars[0] / 3;
-                model.state.frames[f].commit(rotation_between(from(node), normals[node]));
+            _ => {
+                for (n, p) in pos.iter().enumerate() {
+                    model.state.q[3 * n..3 * n + 3].copy_from_slice(p);
+                }
             }
         }
+        let from = |n: usize| done.as_ref().map_or([0.0, 0.0, 1.0], |(_, _, nr)| nr[n]);
+        turn_frames(model, &from, &normals);
         // The ends sit on this cap for the whole step (the scene's own targets in the last).
         for (p, &end) in model.prescribed.iter_mut().zip(&ends) {
             let x = if last { end } else { model.state.q[p.var] };
@@ -177,6 +194,7 @@ fn cap_path(
         let s_prev = done.as_ref().map(|d| d.0);
         if let (Some(s_prev), true) = (s_prev, halvings < MAX_CAP_HALVINGS) {
             halvings += 1;
+            carry = true;
             total.retries += 1;
             model.state = saved;
             pending.push(0.5 * (s_prev + s_next));
@@ -193,6 +211,35 @@ fn cap_path(
         p.end = end;
     }
     total
+}
+
+/// The straight path's start: the footprint bent onto the cap net of radius `rho`, its ends
+/// then moved by the solver's continuation from there to the scene's targets.
+fn onto_cap(network: &mut Network, rho: f64) {
+    let model = &mut network.model;
+    let nodes = network.n_nodes;
+    let (pos, normals) = on_cap(rho, &model.state.q[..3 * nodes]);
+    for (n, p) in pos.iter().enumerate() {
+        model.state.q[3 * n..3 * n + 3].copy_from_slice(p);
+    }
+    turn_frames(model, &|_| [0.0, 0.0, 1.0], &normals);
+    for p in &mut model.prescribed {
+        p.start = model.state.q[p.var];
+    }
+    model.commit();
+}
+
+/// Turns the joint frames (Rigid, Hinge) from the surface normals `from` to `to`, so that a
+/// guess does not twist the rods against them.
+fn turn_frames(model: &mut Model, from: &dyn Fn(usize) -> [f64; 3], to: &[[f64; 3]]) {
+    let mut turned = vec![false; model.state.frames.len()];
+    for fb in &model.terms.frame_bend {
+        let f = fb.port.frame;
+        if !std::mem::replace(&mut turned[f], true) {
+            let node = fb.vars[0] / 3;
+            model.state.frames[f].commit(rotation_between(from(node), to[node]));
+        }
+    }
 }
 
 /// Adds one cap step's solve to the form finding's report (the last step's state fields win).

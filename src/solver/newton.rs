@@ -28,8 +28,6 @@ const MIN_INCREMENT: f64 = 1e-5;
 /// if looser): their states only start the next sub-step, and a few digits are enough for that.
 /// Iterating them to round-off cost the gridshell's form finding about a third of its iterations.
 const INTERMEDIATE_TOLERANCE: f64 = 1e-6;
-/// While the unshifted Hessian keeps failing to factor, it is retried every this many iterations.
-const UNSHIFTED_RETRY: usize = 8;
 
 /// What the search for negative curvature at a stationary point found.
 enum Saddle {
@@ -65,7 +63,6 @@ pub fn solve<P: NewtonProblem>(p: &mut P, s: &NewtonSettings) -> NewtonReport {
         c: vec![0.0; n],
         trial: vec![0.0; n],
         shift_memory: 0.0,
-        unshifted_failures: 0,
         report: NewtonReport {
             load_steps: steps,
             ..Default::default()
@@ -80,9 +77,19 @@ pub fn solve<P: NewtonProblem>(p: &mut P, s: &NewtonSettings) -> NewtonReport {
     // A start that is not in equilibrium at λ = 0 (a form-finding guess; a rest state always is)
     // is equilibrated before the path starts: every sub-step then begins from an equilibrium, and
     // the start's own imbalance is not mistaken for a too-large increment.
-    p.set_continuation(0.0);
+    let trivial = p.continuation_is_trivial();
+    p.set_continuation(if trivial { 1.0 } else { 0.0 });
     let mut start_iterations = 0;
-    if p.assemble(&mut st.g, None).is_finite() && p.relative_residual(&st.g) > s.tolerance {
+    if trivial {
+        // Nothing moves along the path (a form-finding step with fixed supports and no loads):
+        // the solve is the start's equilibration, to the full tolerance.
+        match st.iterate(p, s, s.max_iterations, (steps, steps)) {
+            Outcome::Converged(_) => st.report.converged = true,
+            Outcome::Failed(msg) => st.fail(msg),
+        }
+        st.report.substeps = 1;
+        st.report.step_iterations = vec![st.report.iterations];
+    } else if p.assemble(&mut st.g, None).is_finite() && p.relative_residual(&st.g) > s.tolerance {
         let intermediate = s.clone().tolerance(s.tolerance.max(INTERMEDIATE_TOLERANCE));
         let saved = p.snapshot();
         match st.iterate(p, &intermediate, s.max_iterations, (0, steps)) {
@@ -95,7 +102,8 @@ pub fn solve<P: NewtonProblem>(p: &mut P, s: &NewtonSettings) -> NewtonReport {
         }
         start_iterations = st.report.iterations;
     }
-    'steps: for k in 1..=steps {
+    let first = if trivial { steps + 1 } else { 1 };
+    'steps: for k in first..=steps {
         let target = k as f64 / steps as f64;
         // The start's equilibration has its own budget but is reported with the first step.
         let its_before = st.report.iterations;
@@ -190,8 +198,6 @@ struct Newton {
     c: Vec<f64>,
     trial: Vec<f64>,
     shift_memory: f64,
-    /// Consecutive iterations whose unshifted factorization failed or was skipped.
-    unshifted_failures: usize,
     report: NewtonReport,
 }
 
@@ -247,7 +253,7 @@ impl Newton {
             let stalled = res >= 0.5 * last_res;
             last_res = res;
             if res < s.tolerance || (res < floor && stalled) {
-                let Some(shift) = qp_shift.or_else(|| self.factor_regularized(true)) else {
+                let Some(shift) = qp_shift.or_else(|| self.factor_regularized()) else {
                     return Outcome::Failed(format!(
                         "Hessian could not be regularized at load step {step}/{steps} (residual {res:.3e})"
                     ));
@@ -283,7 +289,7 @@ impl Newton {
                     s.tolerance
                 ));
             }
-            let Some(shift) = qp_shift.or_else(|| self.factor_regularized(false)) else {
+            let Some(shift) = qp_shift.or_else(|| self.factor_regularized()) else {
                 return Outcome::Failed(format!(
                     "Hessian could not be regularized at load step {step}/{steps}, iteration {it} \
                      (residual {res:.3e})"
@@ -387,7 +393,7 @@ impl Newton {
         }
         p.set_continuation(lam);
         let e0 = p.assemble(&mut self.g, Some(&mut self.chol.values));
-        let factored = e0.is_finite() && self.factor_regularized(true).is_some();
+        let factored = e0.is_finite() && self.factor_regularized().is_some();
         p.set_continuation(next);
         if !factored || n == 0 {
             return;
@@ -408,7 +414,7 @@ impl Newton {
     /// current iterate. Returns the shift and the relative stationarity residual.
     fn constrained_step<P: NewtonProblem>(&mut self, p: &mut P) -> Result<(f64, f64), String> {
         let shift = self
-            .factor_regularized(false)
+            .factor_regularized()
             .ok_or_else(|| "Hessian could not be regularized".to_string())?;
         for i in 0..self.d.len() {
             self.d[i] = -self.g[i];
@@ -441,32 +447,22 @@ impl Newton {
 
     /// Factors H + τI with the smallest τ of the sequence 0, τ₀, 10τ₀, … that succeeds.
     ///
-    /// A Hessian that stays indefinite or singular (a free twist gauge, a loaded mechanism) fails
-    /// the unshifted factorization at every iteration, doubling the cost of each: after two
-    /// failures in a row τ = 0 is tried only every few iterations. `exact` always tries it (the
-    /// convergence test needs to know whether the unshifted Hessian is positive definite).
-    fn factor_regularized(&mut self, exact: bool) -> Option<f64> {
+    /// Skipping the unshifted attempt while it keeps failing was tried: it saves a
+    /// factorization per indefinite iteration, but the shift then lingers (it decays ×10 per
+    /// iteration) and turns Newton's final quadratic convergence linear (gridshell cap steps:
+    /// 8 iterations instead of 5).
+    fn factor_regularized(&mut self) -> Option<f64> {
         let ts = Instant::now();
-        let try_unshifted = exact
-            || self.unshifted_failures < 2
-            || self.unshifted_failures.is_multiple_of(UNSHIFTED_RETRY);
-        let r = self.factor_regularized_inner(try_unshifted);
-        if !try_unshifted {
-            self.unshifted_failures += 1;
-        }
+        let r = self.factor_regularized_inner();
         self.report.factor_seconds += ts.elapsed().as_secs_f64();
         r
     }
 
-    fn factor_regularized_inner(&mut self, try_unshifted: bool) -> Option<f64> {
-        if try_unshifted {
-            self.report.factorizations += 1;
-            if self.chol.factor(0.0).is_ok() {
-                self.shift_memory *= 0.1;
-                self.unshifted_failures = 0;
-                return Some(0.0);
-            }
-            self.unshifted_failures += 1;
+    fn factor_regularized_inner(&mut self) -> Option<f64> {
+        self.report.factorizations += 1;
+        if self.chol.factor(0.0).is_ok() {
+            self.shift_memory *= 0.1;
+            return Some(0.0);
         }
         let scale = self.chol.diagonal_scale().max(f64::MIN_POSITIVE);
         let mut tau = (1e-10 * scale).max(0.1 * self.shift_memory);
