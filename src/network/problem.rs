@@ -80,6 +80,9 @@ impl NewtonProblem for Model {
     fn relative_residual(&self, grad: &[f64]) -> f64 {
         Model::relative_residual(self, grad)
     }
+    fn unknown_positions(&self) -> Option<Vec<[f64; 3]>> {
+        Some(Model::unknown_positions(self))
+    }
     fn continuation_is_trivial(&self) -> bool {
         self.terms.loads.is_empty()
             && self.terms.torques.is_empty()

@@ -15,6 +15,7 @@
 use std::time::Instant;
 
 use super::linalg::SparseCholesky;
+use super::ordering::{nested_dissection, Ordering};
 use super::problem::NewtonProblem;
 use super::qp::StepQp;
 use super::settings::{ConstraintReport, NewtonReport, NewtonSettings};
@@ -47,7 +48,11 @@ pub fn solve<P: NewtonProblem>(p: &mut P, s: &NewtonSettings) -> NewtonReport {
     let t0 = Instant::now();
     let n = p.num_free();
     let pairs = p.hessian_pattern();
-    let (chol, slots) = SparseCholesky::new(n, &pairs);
+    let order = (s.ordering == Ordering::NestedDissection)
+        .then(|| p.unknown_positions())
+        .flatten()
+        .map(|pts| nested_dissection(n, &pairs, &pts));
+    let (chol, slots) = SparseCholesky::with_order(n, &pairs, order.as_deref());
     p.set_hessian_slots(&slots);
     let steps = s.load_steps.max(1);
     // Only a problem with constraints builds a QP; without, every step is the Cholesky solve.
