@@ -8,13 +8,13 @@
 //! frame (m1, −m2) and angle −θ), and each edge keeps its own rigidities.
 
 use super::{diff3, same, Category, Reduced, Term};
-use crate::math::dual::compose;
+use crate::math::dual::{compose, separable_dot};
 use crate::math::vec::{dot, V3};
 use crate::math::{Real, HD};
 use crate::network::state::State;
 use crate::rod::frames::{
     bend_quadratic, curvature_binormal, material_curvature, oriented_frame_of,
-    oriented_reference_frame, RefFrame,
+    oriented_reference_frame, FrameDots, RefFrame,
 };
 
 #[derive(Debug, Clone)]
@@ -57,8 +57,7 @@ impl Bend {
     /// The curvature binormal projected on the θ = 0 directors of both edges,
     /// (κb·u⁰, κb·v⁰, κb·u¹, κb·v¹): the energy depends on the edge vectors only through these.
     fn projections<T: Real>(f0: &RefFrame<T>, f1: &RefFrame<T>) -> [T; 4] {
-        let kb = curvature_binormal(f0.t, f1.t);
-        [dot(kb, f0.u), dot(kb, f0.v), dot(kb, f1.u), dot(kb, f1.v)]
+        FrameDots::new(f0, f1, |a, b| dot(*a, *b)).binormal_projections()
     }
 
     /// Energy from the projections and the two angles: with θ' = sign·θ,
@@ -95,15 +94,17 @@ impl Term<11> for Bend {
     fn eval<T: Real>(&self, st: &State, x: &[T; 11]) -> T {
         self.eval_reduced(st, &super::reduce(&STENCIL_MAP, x))
     }
-    /// Each edge's frame is differentiated in its own 3 variables, the projections in the 6 edge
-    /// coordinates, and the energy in (projections, angles); `compose` chains them exactly.
+    /// Each edge's frame is differentiated in its own 3 variables, their products in the 6 edge
+    /// coordinates (block-structured: `separable_dot`), and the energy in (projections, angles);
+    /// `compose` chains them exactly.
     fn derivatives(&self, st: &State, x: &[f64; 11]) -> HD<11> {
         let y = super::reduce(&STENCIL_MAP, x);
         let frame = |j: usize| {
             let e = HD::<3>::vars(&[y[3 * j], y[3 * j + 1], y[3 * j + 2]]);
-            oriented_reference_frame(&st.edges[self.edges[j]], self.signs[j], e).embed::<6>(3 * j)
+            oriented_reference_frame(&st.edges[self.edges[j]], self.signs[j], e)
         };
-        let p = Self::projections(&frame(0), &frame(1));
+        let p = FrameDots::<HD<6>>::new(&frame(0), &frame(1), separable_dot::<3, 3, 6>)
+            .binormal_projections();
         let outer_vars = HD::<6>::vars(&[p[0].v, p[1].v, p[2].v, p[3].v, y[6], y[7]]);
         let outer = self.energy_of(
             &[outer_vars[0], outer_vars[1], outer_vars[2], outer_vars[3]],

@@ -7,11 +7,11 @@
 
 use super::bend::STENCIL_MAP;
 use super::{Category, Reduced, Term};
-use crate::math::dual::compose;
-use crate::math::vec::{signed_angle, transport};
+use crate::math::dual::{compose, separable_dot};
+use crate::math::vec::dot;
 use crate::math::{Real, HD};
 use crate::network::state::State;
-use crate::rod::frames::{oriented_reference_frame, unwrap_angle, RefFrame};
+use crate::rod::frames::{oriented_reference_frame, unwrap_angle, FrameDots};
 
 #[derive(Debug, Clone)]
 pub struct Twist {
@@ -28,9 +28,8 @@ pub struct Twist {
 
 impl Twist {
     /// Reference twist between two θ = 0 frames along the stencil, unwrapped.
-    fn reference_twist_of<T: Real>(&self, st: &State, f0: &RefFrame<T>, f1: &RefFrame<T>) -> T {
-        let raw = signed_angle(transport(f0.t, f1.t, f0.u), f1.u, f1.t);
-        unwrap_angle(raw, st.twist_prev[self.slot])
+    fn reference_twist_of<T: Real>(&self, st: &State, dots: &FrameDots<T>) -> T {
+        unwrap_angle(dots.reference_twist(), st.twist_prev[self.slot])
     }
 
     /// Reference twist from the reduced variables (edge vectors along the stencil, angles).
@@ -39,7 +38,7 @@ impl Twist {
             oriented_reference_frame(&st.edges[self.edges[0]], self.signs[0], [y[0], y[1], y[2]]);
         let f1 =
             oriented_reference_frame(&st.edges[self.edges[1]], self.signs[1], [y[3], y[4], y[5]]);
-        self.reference_twist_of(st, &f0, &f1)
+        self.reference_twist_of(st, &FrameDots::new(&f0, &f1, |a, b| dot(*a, *b)))
     }
 
     /// Energy from the reference twist and the two angles.
@@ -81,9 +80,10 @@ impl Term<11> for Twist {
         let y = Self::reduced(x);
         let frame = |j: usize| {
             let e = HD::<3>::vars(&[y[3 * j], y[3 * j + 1], y[3 * j + 2]]);
-            oriented_reference_frame(&st.edges[self.edges[j]], self.signs[j], e).embed::<6>(3 * j)
+            oriented_reference_frame(&st.edges[self.edges[j]], self.signs[j], e)
         };
-        let r = self.reference_twist_of(st, &frame(0), &frame(1));
+        let dots = FrameDots::<HD<6>>::new(&frame(0), &frame(1), separable_dot::<3, 3, 6>);
+        let r = self.reference_twist_of(st, &dots);
         let [rv, t0, t1] = HD::<3>::vars(&[r.v, y[6], y[7]]);
         let outer = self.energy_of(rv, [t0, t1]);
         super::expand(&STENCIL_MAP, &compose::<6, 1, 3, 8>(&[r], &outer))

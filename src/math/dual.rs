@@ -139,6 +139,40 @@ impl<const N: usize> HD<N> {
     }
 }
 
+/// Σ aᵢ bᵢ of two 3-vectors that depend on disjoint variables: `a` on the first A of the P
+/// variables, `b` on the next B (P = A + B). The Hessian of a product of such functions is
+/// block-structured (a's block scaled by b, b's by a, the outer product of the gradients off the
+/// diagonal), which costs far less than a general product in all P variables. This is the
+/// coupling of two edges' frames in the bending and twisting stencils.
+#[inline(always)]
+pub fn separable_dot<const A: usize, const B: usize, const P: usize>(
+    a: &[HD<A>; 3],
+    b: &[HD<B>; 3],
+) -> HD<P> {
+    debug_assert_eq!(A + B, P);
+    let mut r = HD::<P>::cst(0.0);
+    for k in 0..3 {
+        let (x, y) = (&a[k], &b[k]);
+        r.v += x.v * y.v;
+        for i in 0..A {
+            r.g[i] += x.g[i] * y.v;
+            for j in i..A {
+                r.h[i][j] += x.h[i][j] * y.v;
+            }
+            for j in 0..B {
+                r.h[i][A + j] += x.g[i] * y.g[j];
+            }
+        }
+        for i in 0..B {
+            r.g[A + i] += x.v * y.g[i];
+            for j in i..B {
+                r.h[A + i][A + j] += x.v * y.h[i][j];
+            }
+        }
+    }
+    r
+}
+
 /// Exact derivatives of a composition f(a(y), z) by the chain rule.
 ///
 /// `inner` holds M intermediates a as functions of the P variables y; `outer` is f as a function
