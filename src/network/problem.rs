@@ -119,6 +119,23 @@ impl NewtonProblem for Model {
         let sa = if da > 0.0 { 1e-2 / da } else { f64::INFINITY };
         sx.min(sa)
     }
+    fn unknown_scales(&self, scales: &mut [f64]) {
+        // Positions in units of the mean rest edge length, angles in radians: turning an edge
+        // by one radian moves its end by about that length, so a unit dimensionless step is
+        // the same size for both. (The bounding box's diagonal, the other natural length,
+        // damped the angles of the hemisphere's form finding (diagonal 4.4 R, edges 0.06 R)
+        // 5000 times more and took 282 Newton iterations instead of 165.)
+        let n = self.rest_lengths.len().max(1) as f64;
+        let edge = self.rest_lengths.iter().sum::<f64>() / n;
+        for (v, &f) in self.free.iter().enumerate() {
+            if f != FIXED {
+                scales[f as usize] = match self.kinds[v] {
+                    VarKind::Position => edge,
+                    VarKind::Angle => 1.0,
+                };
+            }
+        }
+    }
     fn num_constraints(&self) -> usize {
         self.contact.as_ref().map_or(0, |c| c.len())
     }

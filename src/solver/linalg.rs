@@ -149,11 +149,25 @@ impl SparseCholesky {
             .fold(0.0, f64::max)
     }
 
+    /// Diagonal value A_ii.
+    pub fn diagonal(&self, i: usize) -> f64 {
+        self.values[self.diag[i]]
+    }
+
     /// Numeric LLᵀ factorization of A + shift·I.
     pub fn factor(&mut self, shift: f64) -> Result<(), NotPositiveDefinite> {
+        self.factor_weighted(shift, &[])
+    }
+
+    /// Numeric LLᵀ factorization of A + shift·W, W = diag(`weights`) (empty: the identity).
+    pub fn factor_weighted(
+        &mut self,
+        shift: f64,
+        weights: &[f64],
+    ) -> Result<(), NotPositiveDefinite> {
         self.shifted.copy_from_slice(&self.values);
-        for &p in &self.diag {
-            self.shifted[p] += shift;
+        for (i, &p) in self.diag.iter().enumerate() {
+            self.shifted[p] += shift * weights.get(i).copied().unwrap_or(1.0);
         }
         let a = SparseColMatRef::new(self.pattern.as_ref(), &self.shifted);
         let r = self.symbolic.factorize_numeric_llt(

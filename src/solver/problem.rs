@@ -49,6 +49,13 @@ pub trait NewtonProblem {
     fn set_continuation(&mut self, lambda: f64);
     /// Size of a perturbation along `direction` that is small for the problem's geometry.
     fn perturbation_size(&self, direction: &[f64]) -> f64;
+    /// Characteristic size of each free unknown in its own unit (a length for positions, 1 for
+    /// angles). The solver's Hessian regularization and its search for negative curvature act
+    /// on the unknowns divided by these sizes, so that they do not depend on the units or the
+    /// size of the problem. Default: all 1.
+    fn unknown_scales(&self, scales: &mut [f64]) {
+        scales.fill(1.0);
+    }
 
     // --- inequality constraints c(x) ≥ 0 (contact, bounds) -------------------------------------
     // A problem without any keeps these defaults; the solver then never builds a QP.
