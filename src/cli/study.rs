@@ -183,12 +183,7 @@ pub fn run(a: &ConvergenceArgs) -> i32 {
     if study.all_converged() {
         EXIT_OK
     } else {
-        let failed: Vec<usize> = study
-            .levels
-            .iter()
-            .filter(|l| !l.converged)
-            .map(|l| l.level)
-            .collect();
+        let failed = study.failed_levels();
         eprintln!(
             "error: {}: level(s) {failed:?} did not converge (reported in the table, left out of \
              the error analysis)",

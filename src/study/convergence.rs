@@ -396,6 +396,15 @@ impl Study {
     pub fn all_converged(&self) -> bool {
         self.levels.iter().all(|l| l.converged)
     }
+
+    /// The levels (1-based) whose solve did not converge.
+    pub fn failed_levels(&self) -> Vec<usize> {
+        self.levels
+            .iter()
+            .filter(|l| !l.converged)
+            .map(|l| l.level)
+            .collect()
+    }
 }
 
 /// Turns the solved levels into errors, orders and the extrapolation.

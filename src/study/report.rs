@@ -145,12 +145,7 @@ pub fn table(study: &Study) -> String {
              discretization error)"
         );
     }
-    let failed: Vec<usize> = study
-        .levels
-        .iter()
-        .filter(|l| !l.converged)
-        .map(|l| l.level)
-        .collect();
+    let failed = study.failed_levels();
     if !failed.is_empty() {
         let _ = writeln!(
             t,
