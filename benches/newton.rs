@@ -86,6 +86,7 @@ fn grid_scene(n: usize, subdivide: usize) -> Scene {
         obstacles: vec![],
         bounds: vec![],
         target: None,
+        reference: None,
         solver: Solver::default(),
     }
 }
@@ -185,6 +186,7 @@ fn cantilever_solve(bencher: divan::Bencher, n: usize) {
         obstacles: vec![],
         bounds: vec![],
         target: None,
+        reference: None,
         solver: Solver::default(),
     };
     let settings = NewtonSettings::default();

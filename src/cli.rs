@@ -3,6 +3,7 @@
 mod network;
 mod plot;
 pub mod progress;
+mod study;
 
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
@@ -10,7 +11,7 @@ use std::path::{Path, PathBuf};
 use clap::{Args, Parser, Subcommand};
 
 use crate::gridshell::footprint::{self, HemisphereSpec, JointChoice};
-use crate::gridshell::formfind::DEFAULT_START_CAP;
+use crate::gridshell::formfind::{FormPath, DEFAULT_START_CAP};
 use crate::gridshell::job as gridshell_job;
 use crate::io::{atomic, csv, obj};
 use crate::job;
@@ -19,6 +20,14 @@ use crate::scene::{self, FieldError, Scene, SceneError};
 
 pub use network::{JointArg, NetworkArgs};
 pub use plot::PlotArgs;
+
+/// `--path` of `rodnet gridshell hemisphere`.
+#[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum PathArg {
+    CapNets,
+    Straight,
+}
+pub use study::{ConvergenceArgs, StudyCommand};
 
 #[derive(Parser, Debug)]
 #[command(
@@ -61,6 +70,11 @@ pub enum Command {
     Gridshell {
         #[command(subcommand)]
         shape: GridshellCommand,
+    },
+    /// Studies that solve a problem many times: convergence under subdivision.
+    Study {
+        #[command(subcommand)]
+        study: StudyCommand,
     },
 }
 
@@ -105,8 +119,10 @@ pub struct HemisphereArgs {
     /// Poisson's ratio ν (shear modulus E/(2(1+ν))).
     #[arg(long, default_value_t = 0.3)]
     pub poisson_ratio: f64,
-    /// Continuation steps of the boundary motion (rodnet subdivides them as needed).
-    #[arg(long, default_value_t = 8)]
+    /// Steps of the ends through caps of growing curvature, from the starting cap to the
+    /// hemisphere (a step that does not converge is halved; with --start-cap 0, steps of the
+    /// solver's straight-line continuation).
+    #[arg(long, default_value_t = 1)]
     pub load_steps: usize,
     /// Relative residual tolerance (see docs/scene-format.md).
     #[arg(long, default_value_t = 1e-9)]
@@ -115,6 +131,10 @@ pub struct HemisphereArgs {
     /// without stretching) to break the up-down symmetry; 0 starts from the flat footprint.
     #[arg(long, default_value_t = DEFAULT_START_CAP)]
     pub start_cap: f64,
+    /// How the rod ends travel from the starting cap to the equator: through the nets of caps
+    /// of growing curvature, or on straight lines (docs/gridshell.md).
+    #[arg(long, value_enum, default_value_t = PathArg::CapNets)]
+    pub path: PathArg,
     /// Write the footprint scene (RON) here; alone, without other outputs, nothing is solved.
     #[arg(long)]
     pub scene_out: Option<PathBuf>,
@@ -218,6 +238,9 @@ pub fn run(cli: Cli) -> i32 {
             shape: GridshellCommand::Hemisphere(args),
         } => hemisphere(args),
         Command::Plot(args) => plot::run(&args),
+        Command::Study {
+            study: StudyCommand::Convergence(args),
+        } => study::run(&args),
     }
 }
 
@@ -479,13 +502,17 @@ fn hemisphere_spec(a: &HemisphereArgs) -> Result<HemisphereSpec, String> {
     if !positive(a.tolerance) {
         return Err(format!("--tolerance must be positive, got {}", a.tolerance));
     }
-    if !(a.start_cap == 0.0 || (a.start_cap.is_finite() && a.start_cap > 1.0)) {
+    if !(a.start_cap == 0.0 || (a.start_cap.is_finite() && a.start_cap >= 1.0)) {
         return Err(format!(
-            "--start-cap must be 0 (flat start) or a finite ratio above 1, got {}",
+            "--start-cap must be 0 (flat start), 1 (the analytic net) or a finite ratio above 1, got {}",
             a.start_cap
         ));
     }
     let mut spec = HemisphereSpec::new(a.radius, a.rods, a.subdivide);
+    spec.path = match a.path {
+        PathArg::CapNets => FormPath::CapNets,
+        PathArg::Straight => FormPath::Straight,
+    };
     spec.joint = match a.joint {
         JointArg::Ball => JointChoice::Ball,
         JointArg::Hinge => JointChoice::Hinge,

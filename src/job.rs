@@ -1,5 +1,6 @@
 //! One solve of a scene from start to results: build, Newton with load steps, collect.
 
+use crate::io::reference;
 use crate::io::results::Results;
 use crate::network::build::{build, Network};
 use crate::scene::{FieldError, Scene};
@@ -22,7 +23,8 @@ pub fn settings_of(scene: &Scene) -> NewtonSettings {
 pub fn solve_scene(scene: &Scene, settings: &NewtonSettings) -> Result<Solution, FieldError> {
     let mut network = build(scene)?;
     let report = solver::solve(&mut network.model, settings);
-    let results = Results::collect(&network, &report, scene.target.as_ref());
+    let mut results = Results::collect(&network, &report, scene.target.as_ref());
+    results.reference = reference::measure(&network, scene);
     Ok(Solution {
         network,
         report,

@@ -2,7 +2,8 @@
 //!
 //! Layout: [`rod`] (sections, frames, transport), [`energy`] (one term per file), [`network`]
 //! (state, DOF map, assembly, builder), [`solver`] (Newton, sparse Cholesky), [`scene`] (RON format
-//! and validation), [`io`] (results, OBJ), [`gridshell`] (Chebyshev nets).
+//! and validation), [`io`] (results, OBJ), [`gridshell`] (Chebyshev nets), [`study`] (convergence
+//! under subdivision).
 
 // Numeric kernels index several arrays with one loop variable; iterator chains there hide the
 // mathematics without making it safer.
@@ -19,3 +20,4 @@ pub mod network;
 pub mod rod;
 pub mod scene;
 pub mod solver;
+pub mod study;

@@ -155,3 +155,32 @@ fn hinge_rigid_and_elastic_joints_form_find_and_rigid_ones_resist_the_net() {
         "ball {ball:?}\nrigid {rigid:?}"
     );
 }
+
+/// A cap step too long for the iteration budget is halved (from the last equilibrium) instead of
+/// failing, and the halved path reaches the same equilibrium; with no budget at all the form
+/// finding stops with a message naming the cap.
+#[test]
+fn a_cap_step_that_fails_is_halved_and_reaches_the_same_dome() {
+    let mut spec = HemisphereSpec::new(1.0, 6, 2);
+    spec.load_steps = 1;
+    let reference = run(&spec, DEFAULT_START_CAP, None).unwrap();
+    assert!(reference.results.converged);
+    assert_eq!(reference.form.report.retries, 0);
+    spec.max_iterations = 5;
+    let halved = run(&spec, DEFAULT_START_CAP, None).unwrap();
+    assert!(
+        halved.results.converged,
+        "{:?}",
+        halved.results.solver.message
+    );
+    assert!(halved.form.report.retries > 0, "no cap step was halved");
+    let (a, b) = (&reference.metrics, &halved.metrics);
+    for ((name, x), (_, y)) in as_array(a).iter().zip(as_array(b).iter()) {
+        assert!((x - y).abs() < 1e-6, "{name}: {x} vs {y}");
+    }
+    spec.max_iterations = 1;
+    let stopped = run(&spec, DEFAULT_START_CAP, None).unwrap();
+    assert!(!stopped.results.converged);
+    let msg = stopped.results.solver.message.clone().unwrap();
+    assert!(msg.contains("cap of radius"), "{msg}");
+}

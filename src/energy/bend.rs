@@ -7,12 +7,14 @@
 //! stencil (edge 0 arrives at the vertex, edge 1 leaves it; a reversed edge has tangent −t,
 //! frame (m1, −m2) and angle −θ), and each edge keeps its own rigidities.
 
-use super::{diff3, reduced_term, same, Category, Reduced, Term};
-use crate::math::vec::V3;
-use crate::math::Real;
+use super::{diff3, same, Category, Reduced, Term};
+use crate::math::dual::{compose, separable_dot};
+use crate::math::vec::{dot, V3};
+use crate::math::{Real, HD};
 use crate::network::state::State;
 use crate::rod::frames::{
     bend_quadratic, curvature_binormal, material_curvature, oriented_frame_of,
+    oriented_reference_frame, FrameDots, RefFrame,
 };
 
 #[derive(Debug, Clone)]
@@ -51,13 +53,36 @@ pub(crate) const STENCIL_MAP: [[(usize, f64); 2]; 8] = {
     [a[0], a[1], a[2], b[0], b[1], b[2], same(9), same(10)]
 };
 
+impl Bend {
+    /// The curvature binormal projected on the θ = 0 directors of both edges,
+    /// (κb·u⁰, κb·v⁰, κb·u¹, κb·v¹): the energy depends on the edge vectors only through these.
+    fn projections<T: Real>(f0: &RefFrame<T>, f1: &RefFrame<T>) -> [T; 4] {
+        FrameDots::new(f0, f1, |a, b| dot(*a, *b)).binormal_projections()
+    }
+
+    /// Energy from the projections and the two angles: with θ' = sign·θ,
+    /// κ = (cos θ' κb·v − sin θ' κb·u, −cos θ' κb·u − sin θ' κb·v).
+    fn energy_of<T: Real>(&self, p: &[T; 4], theta: [T; 2]) -> T {
+        let mut e = T::cst(0.0);
+        for j in 0..2 {
+            let th = theta[j] * self.signs[j];
+            let (s, c) = (th.sin(), th.cos());
+            let (a, b) = (p[2 * j], p[2 * j + 1]);
+            let k = [c * b - s * a, -(c * a + s * b)];
+            e += bend_quadratic(k, self.rest[j], self.ei[j][0], self.ei[j][1]);
+        }
+        e * (0.25 / self.voronoi)
+    }
+}
+
 impl Reduced<11, 8> for Bend {
     const MAP: [[(usize, f64); 2]; 8] = STENCIL_MAP;
     fn eval_reduced<T: Real>(&self, st: &State, y: &[T; 8]) -> T {
-        let [k0, k1] = self.curvatures(st, y);
-        let [[a0, b0], [a1, b1]] = self.ei;
-        (bend_quadratic(k0, self.rest[0], a0, b0) + bend_quadratic(k1, self.rest[1], a1, b1))
-            * (0.25 / self.voronoi)
+        let f0 =
+            oriented_reference_frame(&st.edges[self.edges[0]], self.signs[0], [y[0], y[1], y[2]]);
+        let f1 =
+            oriented_reference_frame(&st.edges[self.edges[1]], self.signs[1], [y[3], y[4], y[5]]);
+        self.energy_of(&Self::projections(&f0, &f1), [y[6], y[7]])
     }
 }
 
@@ -66,5 +91,25 @@ impl Term<11> for Bend {
     fn vars(&self) -> &[usize; 11] {
         &self.vars
     }
-    reduced_term!(11, 8);
+    fn eval<T: Real>(&self, st: &State, x: &[T; 11]) -> T {
+        self.eval_reduced(st, &super::reduce(&STENCIL_MAP, x))
+    }
+    /// Each edge's frame is differentiated in its own 3 variables, their products in the 6 edge
+    /// coordinates (block-structured: `separable_dot`), and the energy in (projections, angles);
+    /// `compose` chains them exactly.
+    fn derivatives(&self, st: &State, x: &[f64; 11]) -> HD<11> {
+        let y = super::reduce(&STENCIL_MAP, x);
+        let frame = |j: usize| {
+            let e = HD::<3>::vars(&[y[3 * j], y[3 * j + 1], y[3 * j + 2]]);
+            oriented_reference_frame(&st.edges[self.edges[j]], self.signs[j], e)
+        };
+        let p = FrameDots::<HD<6>>::new(&frame(0), &frame(1), separable_dot::<3, 3, 6>)
+            .binormal_projections();
+        let outer_vars = HD::<6>::vars(&[p[0].v, p[1].v, p[2].v, p[3].v, y[6], y[7]]);
+        let outer = self.energy_of(
+            &[outer_vars[0], outer_vars[1], outer_vars[2], outer_vars[3]],
+            [outer_vars[4], outer_vars[5]],
+        );
+        super::expand(&STENCIL_MAP, &compose::<6, 4, 6, 8>(&p, &outer))
+    }
 }

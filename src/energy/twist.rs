@@ -6,11 +6,12 @@
 //! valence-2 rigid joint between two rods; GJ is then the series value over the two half-edges.
 
 use super::bend::STENCIL_MAP;
-use super::{reduced_term, Category, Reduced, Term};
-use crate::math::vec::{signed_angle, transport};
-use crate::math::Real;
+use super::{Category, Reduced, Term};
+use crate::math::dual::{compose, separable_dot};
+use crate::math::vec::dot;
+use crate::math::{Real, HD};
 use crate::network::state::State;
-use crate::rod::frames::{oriented_frame_of, unwrap_angle};
+use crate::rod::frames::{oriented_reference_frame, unwrap_angle, FrameDots};
 
 #[derive(Debug, Clone)]
 pub struct Twist {
@@ -26,23 +27,25 @@ pub struct Twist {
 }
 
 impl Twist {
+    /// Reference twist between two θ = 0 frames along the stencil, unwrapped.
+    fn reference_twist_of<T: Real>(&self, st: &State, dots: &FrameDots<T>) -> T {
+        unwrap_angle(dots.reference_twist(), st.twist_prev[self.slot])
+    }
+
     /// Reference twist from the reduced variables (edge vectors along the stencil, angles).
     pub fn reference_twist<T: Real>(&self, st: &State, y: &[T; 8]) -> T {
-        let zero = T::cst(0.0);
-        let f0 = oriented_frame_of(
-            &st.edges[self.edges[0]],
-            self.signs[0],
-            [y[0], y[1], y[2]],
-            zero,
-        );
-        let f1 = oriented_frame_of(
-            &st.edges[self.edges[1]],
-            self.signs[1],
-            [y[3], y[4], y[5]],
-            zero,
-        );
-        let raw = signed_angle(transport(f0.t, f1.t, f0.u), f1.u, f1.t);
-        unwrap_angle(raw, st.twist_prev[self.slot])
+        let f0 =
+            oriented_reference_frame(&st.edges[self.edges[0]], self.signs[0], [y[0], y[1], y[2]]);
+        let f1 =
+            oriented_reference_frame(&st.edges[self.edges[1]], self.signs[1], [y[3], y[4], y[5]]);
+        self.reference_twist_of(st, &FrameDots::new(&f0, &f1, |a, b| dot(*a, *b)))
+    }
+
+    /// Energy from the reference twist and the two angles.
+    fn energy_of<T: Real>(&self, reference: T, theta: [T; 2]) -> T {
+        let m = reference + theta[1] * self.signs[1] - theta[0] * self.signs[0];
+        let d = m - self.rest;
+        d * d * (0.5 * self.gj / self.voronoi)
     }
 
     /// Discrete twist m (radians) from the reduced variables.
@@ -59,8 +62,7 @@ impl Twist {
 impl Reduced<11, 8> for Twist {
     const MAP: [[(usize, f64); 2]; 8] = STENCIL_MAP;
     fn eval_reduced<T: Real>(&self, st: &State, y: &[T; 8]) -> T {
-        let d = self.twist(st, y) - self.rest;
-        d * d * (0.5 * self.gj / self.voronoi)
+        self.energy_of(self.reference_twist(st, y), [y[6], y[7]])
     }
 }
 
@@ -69,5 +71,21 @@ impl Term<11> for Twist {
     fn vars(&self) -> &[usize; 11] {
         &self.vars
     }
-    reduced_term!(11, 8);
+    fn eval<T: Real>(&self, st: &State, x: &[T; 11]) -> T {
+        self.eval_reduced(st, &Self::reduced(x))
+    }
+    /// The reference twist is differentiated in the 6 edge coordinates (each frame in its own
+    /// 3), the energy in (reference twist, angles); `compose` chains them exactly.
+    fn derivatives(&self, st: &State, x: &[f64; 11]) -> HD<11> {
+        let y = Self::reduced(x);
+        let frame = |j: usize| {
+            let e = HD::<3>::vars(&[y[3 * j], y[3 * j + 1], y[3 * j + 2]]);
+            oriented_reference_frame(&st.edges[self.edges[j]], self.signs[j], e)
+        };
+        let dots = FrameDots::<HD<6>>::new(&frame(0), &frame(1), separable_dot::<3, 3, 6>);
+        let r = self.reference_twist_of(st, &dots);
+        let [rv, t0, t1] = HD::<3>::vars(&[r.v, y[6], y[7]]);
+        let outer = self.energy_of(rv, [t0, t1]);
+        super::expand(&STENCIL_MAP, &compose::<6, 1, 3, 8>(&[r], &outer))
+    }
 }

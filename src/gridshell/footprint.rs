@@ -64,8 +64,10 @@ pub struct HemisphereSpec {
     /// Pa.
     pub young_modulus: f64,
     pub poisson_ratio: f64,
-    /// Continuation steps for the boundary motion.
+    /// Steps of the boundary motion (see `formfind`).
     pub load_steps: usize,
+    /// How the ends travel from the starting cap to the equator.
+    pub path: crate::gridshell::formfind::FormPath,
     pub tolerance: f64,
     pub max_iterations: usize,
 }
@@ -91,7 +93,8 @@ impl HemisphereSpec {
             },
             young_modulus: 1e9,
             poisson_ratio: 0.3,
-            load_steps: 8,
+            load_steps: 1,
+            path: Default::default(),
             tolerance: 1e-9,
             max_iterations: 400,
         }
@@ -222,6 +225,7 @@ pub fn footprint(spec: &HemisphereSpec) -> Footprint {
             center: [0.0; 3],
             radius: spec.radius,
         }),
+        reference: None,
         solver: Solver {
             tolerance: spec.tolerance,
             max_iterations: spec.max_iterations,

@@ -18,21 +18,47 @@
 //! point r(u, v) of the Chebyshev net of a sphere of radius `start_cap · R`, rested on z = 0 at
 //! its lowest rod end. That net is isometric along its curves, so every rod keeps its length
 //! (up to chord versus arc, ~(l/R_cap)²/24 per edge) and every crossing stays a crossing: the
-//! start is an upward, unstretched bend of the footprint, not the answer. The ends then move on
-//! straight lines from the cap's rim to their equator points over the load steps. The last step
-//! is the pure problem (ends pinned on the equator, no load), so the cap only selects the
-//! branch: the equilibrium does not depend on it (docs/gridshell.md compares cap radii).
+//! start is an upward, unstretched bend of the footprint, not the answer.
+//!
+//! Two paths lead from there to the hemisphere (`FormPath`):
+//! - `CapNets` (default): the ends travel through the same family of isometric bendings. In
+//!   each of `load_steps` steps they sit on the net of the sphere whose curvature is the next of
+//!   equal steps from 1/(start_cap·R) to 1/R, and the nodes start the step on that net (twist
+//!   angles and joint frames carry over from the last equilibrium). Each step is then a plain
+//!   equilibration at fixed ends; one that does not converge is halved from the last
+//!   equilibrium. The nets are only starting guesses: the shell's equilibrium departs from them
+//!   by a few percent of R and Newton finds it. Carrying the last equilibrium's departure from
+//!   its net over as a predictor was tried and cost more iterations (n = 12, K = 4: 16 against
+//!   14).
+//! - `Straight`: the ends move on straight lines from the cap's rim to their equator points, by
+//!   the solver's adaptive continuation, and nothing but the starting cap uses the analytic net.
+//!   Slower (about 100 Newton iterations for n = 12, K = 4): the first sub-step crushes the end
+//!   edges while the grid stands still.
+//!
+//! The last step is the pure problem (ends pinned on the equator, no load), so the path only
+//! selects the branch and starts Newton close: the equilibrium does not depend on it
+//! (docs/gridshell.md compares cap radii and paths). `start_cap = 1` starts directly from the
+//! analytic net of the hemisphere.
 
 use std::time::Instant;
 
 use crate::gridshell::chebyshev::HemisphereNet;
-use crate::math::vec::{cross, norm, normalize, scalef};
+use crate::math::vec::{cross, dot, norm, normalize, scalef};
 use crate::network::build::Network;
+use crate::network::model::Model;
 use crate::solver::{self, NewtonReport, NewtonSettings};
 
 /// Radius of the starting cap over R. Larger radii start flatter and need more iterations
 /// (see docs/gridshell.md); the equilibrium is the same.
 pub const DEFAULT_START_CAP: f64 = 5.0;
+
+/// How the rod ends get from the starting cap to the equator (see the module doc).
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
+pub enum FormPath {
+    #[default]
+    CapNets,
+    Straight,
+}
 
 pub struct FormFinding {
     pub report: NewtonReport,
@@ -42,62 +68,204 @@ pub struct FormFinding {
 
 /// Form-finds `network` in place. It must be built from a footprint scene of radius `radius`
 /// (rods flat in z = 0 with their net parameters as (x, y), ends with `move_to`).
-/// `start_cap` is the starting cap's radius over R; 0 starts from the flat footprint itself
-/// (no symmetry breaking: for studies of the solver). `settings.load_steps` steps move the
-/// ends from the cap's rim to the equator.
+/// `start_cap` ≥ 1 is the starting cap's radius over R (1: the analytic net itself); 0 starts
+/// from the flat footprint and moves the ends on straight lines by the solver's continuation
+/// (no symmetry breaking: for studies of the solver).
 pub fn form_find(
     network: &mut Network,
     settings: &NewtonSettings,
     radius: f64,
     start_cap: f64,
+    path: FormPath,
 ) -> FormFinding {
     let t0 = Instant::now();
-    let model = &mut network.model;
-    if start_cap > 0.0 {
-        let cap = HemisphereNet::new(start_cap * radius, 1);
-        let q = &mut model.state.q;
-        let nodes = network.n_nodes;
-        let flat = q[..3 * nodes].to_vec();
-        let mut lowest = f64::INFINITY;
-        for n in 0..nodes {
-            let p = cap.point(flat[3 * n], flat[3 * n + 1]);
-            q[3 * n..3 * n + 3].copy_from_slice(&p);
-            lowest = lowest.min(p[2]);
+    let report = if start_cap > 0.0 && path == FormPath::CapNets {
+        cap_path(network, settings, radius, start_cap)
+    } else {
+        if start_cap > 0.0 {
+            onto_cap(network, start_cap * radius);
         }
-        // Joint frames (Rigid, Hinge) turn with the surface, from the plane's normal z to the
-        // cap's normal at their node, so that the guess does not twist the rods against them.
-        let mut turned = vec![false; model.state.frames.len()];
-        for fb in &model.terms.frame_bend {
-            let f = fb.port.frame;
-            if !std::mem::replace(&mut turned[f], true) {
-                let node = fb.vars[0] / 3;
-                let normal = normalize([q[3 * node], q[3 * node + 1], q[3 * node + 2]]);
-                model.state.frames[f].commit(rotation_from_z(normal));
-            }
-        }
-        // Rest the cap on z = 0 at its lowest node, a rod end.
-        for n in 0..nodes {
-            q[3 * n + 2] -= lowest;
-        }
-        for p in &mut model.prescribed {
-            p.start = q[p.var];
-        }
-        // Edge reference frames follow the new tangents before the first assembly.
-        model.commit();
-    }
-    let report = solver::solve(model, settings);
+        solver::solve(&mut network.model, settings)
+    };
     FormFinding {
         report,
         seconds: t0.elapsed().as_secs_f64(),
     }
 }
 
-/// Rotation vector of the smallest rotation taking the z axis to the unit vector `n`.
-fn rotation_from_z(n: [f64; 3]) -> [f64; 3] {
-    let axis = cross([0.0, 0.0, 1.0], n);
+/// Node positions on the Chebyshev net of the sphere of radius `rho` (resting on z = 0 at the
+/// lowest node) and the sphere's unit normals there.
+fn on_cap(rho: f64, flat: &[f64]) -> (CapNodes, CapNodes) {
+    let cap = HemisphereNet::new(rho, 1);
+    let mut pos: Vec<[f64; 3]> = flat.chunks(3).map(|x| cap.point(x[0], x[1])).collect();
+    let normals = pos.iter().map(|&p| normalize(p)).collect();
+    let lowest = pos.iter().map(|p| p[2]).fold(f64::INFINITY, f64::min);
+    for p in &mut pos {
+        p[2] -= lowest;
+    }
+    (pos, normals)
+}
+
+/// Node positions or normals on one cap.
+type CapNodes = Vec<[f64; 3]>;
+
+/// Halvings of a cap step that fails to converge before the form finding gives up.
+const MAX_CAP_HALVINGS: usize = 12;
+
+fn cap_path(
+    network: &mut Network,
+    settings: &NewtonSettings,
+    radius: f64,
+    start_cap: f64,
+) -> NewtonReport {
+    let model = &mut network.model;
+    let nodes = network.n_nodes;
+    let flat = model.state.q[..3 * nodes].to_vec();
+    let ends: Vec<f64> = model.prescribed.iter().map(|p| p.end).collect();
+    let steps = if start_cap > 1.0 {
+        settings.load_steps.max(1)
+    } else {
+        0
+    };
+    let (k0, k1) = (1.0 / (start_cap * radius), 1.0 / radius);
+    let mut total = NewtonReport {
+        load_steps: steps.max(1),
+        converged: true,
+        ..Default::default()
+    };
+    // Path parameter s ∈ [0, 1] (curvature k0 + s (k1 − k0)); pending targets, nearest last.
+    let mut pending: Vec<f64> = (0..=steps)
+        .rev()
+        .map(|k| k as f64 / steps.max(1) as f64)
+        .collect();
+    // The last equilibrium's path parameter, net positions and normals.
+    let mut done: Option<(f64, CapNodes, CapNodes)> = None;
+    let mut halvings = 0;
+    // After a failure, steps continue from the last equilibrium instead of restarting from a
+    // net, so that halving them brings Newton's start closer.
+    let mut carry = false;
+    while let Some(&s_next) = pending.last() {
+        let last = s_next == 1.0;
+        let rho = if last {
+            radius
+        } else {
+            1.0 / (k0 + (k1 - k0) * s_next)
+        };
+        let (pos, normals) = on_cap(rho, &flat);
+        let saved = model.state.clone();
+        match (&done, carry) {
+            (Some((_, old, _)), true) => {
+                for n in 0..nodes {
+                    for c in 0..3 {
+                        model.state.q[3 * n + c] += pos[n][c] - old[n][c];
+                    }
+                }
+            }
+            _ => {
+                for (n, p) in pos.iter().enumerate() {
+                    model.state.q[3 * n..3 * n + 3].copy_from_slice(p);
+                }
+            }
+        }
+        let from = |n: usize| done.as_ref().map_or([0.0, 0.0, 1.0], |(_, _, nr)| nr[n]);
+        turn_frames(model, &from, &normals);
+        // The ends sit on this cap for the whole step (the scene's own targets in the last).
+        for (p, &end) in model.prescribed.iter_mut().zip(&ends) {
+            let x = if last { end } else { model.state.q[p.var] };
+            model.state.q[p.var] = x;
+            p.start = x;
+            p.end = x;
+        }
+        // Edge reference frames follow the new tangents before the first assembly.
+        model.commit();
+        let tolerance = if last {
+            settings.tolerance
+        } else {
+            settings.tolerance.max(1e-6)
+        };
+        let r = solver::solve(model, &settings.clone().load_steps(1).tolerance(tolerance));
+        merge(&mut total, &r);
+        if r.converged {
+            pending.pop();
+            done = Some((s_next, pos, normals));
+            continue;
+        }
+        // A cap step too far for Newton: retry from the last equilibrium through the cap halfway.
+        let s_prev = done.as_ref().map(|d| d.0);
+        if let (Some(s_prev), true) = (s_prev, halvings < MAX_CAP_HALVINGS) {
+            halvings += 1;
+            carry = true;
+            total.retries += 1;
+            model.state = saved;
+            pending.push(0.5 * (s_prev + s_next));
+            continue;
+        }
+        let why = r.message.as_deref().unwrap_or("no convergence");
+        total.message = Some(format!(
+            "form finding stopped on the cap of radius {rho:.4} m (path parameter {s_next:.4}): {why}"
+        ));
+        total.converged = false;
+        break;
+    }
+    for (p, &end) in model.prescribed.iter_mut().zip(&ends) {
+        p.end = end;
+    }
+    total
+}
+
+/// The straight path's start: the footprint bent onto the cap net of radius `rho`, its ends
+/// then moved by the solver's continuation from there to the scene's targets.
+fn onto_cap(network: &mut Network, rho: f64) {
+    let model = &mut network.model;
+    let nodes = network.n_nodes;
+    let (pos, normals) = on_cap(rho, &model.state.q[..3 * nodes]);
+    for (n, p) in pos.iter().enumerate() {
+        model.state.q[3 * n..3 * n + 3].copy_from_slice(p);
+    }
+    turn_frames(model, &|_| [0.0, 0.0, 1.0], &normals);
+    for p in &mut model.prescribed {
+        p.start = model.state.q[p.var];
+    }
+    model.commit();
+}
+
+/// Turns the joint frames (Rigid, Hinge) from the surface normals `from` to `to`, so that a
+/// guess does not twist the rods against them.
+fn turn_frames(model: &mut Model, from: &dyn Fn(usize) -> [f64; 3], to: &[[f64; 3]]) {
+    let mut turned = vec![false; model.state.frames.len()];
+    for fb in &model.terms.frame_bend {
+        let f = fb.port.frame;
+        if !std::mem::replace(&mut turned[f], true) {
+            let node = fb.vars[0] / 3;
+            model.state.frames[f].commit(rotation_between(from(node), to[node]));
+        }
+    }
+}
+
+/// Adds one cap step's solve to the form finding's report (the last step's state fields win).
+fn merge(total: &mut NewtonReport, r: &NewtonReport) {
+    total.iterations += r.iterations;
+    total.factorizations += r.factorizations;
+    total.regularized_iterations += r.regularized_iterations;
+    total.saddle_escapes += r.saddle_escapes;
+    total.substeps += r.substeps;
+    total.retries += r.retries;
+    total.seconds += r.seconds;
+    total.factor_seconds += r.factor_seconds;
+    total.step_iterations.push(r.iterations);
+    total.residual = r.residual;
+    total.energy = r.energy;
+    total.stable = r.stable;
+    total.residual_floor = r.residual_floor;
+    total.tolerance = r.tolerance;
+}
+
+/// Rotation vector of the smallest rotation taking the unit vector `a` to the unit vector `b`.
+fn rotation_between(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    let axis = cross(a, b);
     let s = norm(axis);
     if s == 0.0 {
         return [0.0; 3];
     }
-    scalef(axis, s.atan2(n[2]) / s)
+    scalef(axis, s.atan2(dot(a, b)) / s)
 }

@@ -40,7 +40,7 @@ pub fn run(
     let generation_seconds = t0.elapsed().as_secs_f64();
     let mut settings = settings_of(&fp.scene);
     settings.progress = progress;
-    let form = form_find(&mut network, &settings, spec.radius, start_cap);
+    let form = form_find(&mut network, &settings, spec.radius, start_cap, spec.path);
     let mut results = Results::collect(&network, &form.report, fp.scene.target.as_ref());
     let metrics = shape_metrics(&network, &fp.net, &fp.crossings);
     if let Some(t) = results.target.as_mut() {

@@ -583,6 +583,7 @@ pub fn to_scene(obj: &ObjFile, o: &NetworkOptions) -> Result<Generated, ObjError
             obstacles: Vec::new(),
             bounds: Vec::new(),
             target: None,
+            reference: None,
             solver: o.solver.clone(),
         },
         rod_lines,

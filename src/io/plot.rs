@@ -289,7 +289,7 @@ pub fn fmt_sci(x: f64) -> String {
     }
 }
 
-fn encode_png(rgb: &[u8], width: u32, height: u32) -> Result<Vec<u8>, String> {
+pub(crate) fn encode_png(rgb: &[u8], width: u32, height: u32) -> Result<Vec<u8>, String> {
     let mut out = Vec::new();
     let mut enc = png::Encoder::new(&mut out, width, height);
     enc.set_color(png::ColorType::Rgb);
@@ -381,7 +381,7 @@ pub fn text_width(s: &str, scale: u32) -> u32 {
 }
 
 #[allow(clippy::too_many_arguments)]
-fn draw_text(
+pub(crate) fn draw_text(
     buf: &mut [u8],
     w: usize,
     h: usize,

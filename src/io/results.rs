@@ -2,6 +2,7 @@
 
 use serde::Serialize;
 
+use crate::io::reference::ReferenceJson;
 use crate::io::rod_energy::{self, RodEnergy};
 use crate::math::vec::{norm, scalef, sub};
 use crate::network::build::Network;
@@ -150,6 +151,9 @@ pub struct Results {
     pub reactions: Vec<ReactionJson>,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub target: Option<TargetJson>,
+    /// Scenes with a `reference` only (filled in by [`crate::job::solve_scene`]).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub reference: Option<ReferenceJson>,
     pub solver: SolverJson,
     /// Scenes with obstacles or bounds only.
     #[serde(skip_serializing_if = "Option::is_none")]
@@ -251,6 +255,7 @@ impl Results {
             joints,
             reactions,
             target,
+            reference: None,
             solver: SolverJson {
                 factorizations: report.factorizations,
                 regularized_iterations: report.regularized_iterations,
@@ -307,6 +312,7 @@ impl Results {
                 .iter()
                 .all(fin)
             })
+            && self.reference.as_ref().is_none_or(|r| r.error.is_finite())
             && self
                 .contacts
                 .iter()

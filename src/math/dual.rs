@@ -100,7 +100,7 @@ impl<const N: usize> HD<N> {
     }
 
     /// Applies a scalar function with derivatives `d1 = f'(v)` and `d2 = f''(v)`.
-    #[inline]
+    #[inline(always)]
     fn chain(&self, f: f64, d1: f64, d2: f64) -> Self {
         let mut r = Self::cst(f);
         for i in 0..N {
@@ -116,8 +116,115 @@ impl<const N: usize> HD<N> {
     }
 }
 
+impl<const N: usize> HD<N> {
+    /// The same number as a function of `P ≥ N` variables, of which its own are
+    /// `offset..offset + N` (the others do not enter it).
+    pub fn embed<const P: usize>(&self, offset: usize) -> HD<P> {
+        let mut r = HD::<P>::cst(0.0);
+        self.embed_into(&mut r, offset);
+        r
+    }
+
+    /// [`Self::embed`] into a zero-initialized `out` (no copy of the large result).
+    #[inline(always)]
+    pub fn embed_into<const P: usize>(&self, out: &mut HD<P>, offset: usize) {
+        debug_assert!(offset + N <= P);
+        out.v = self.v;
+        for i in 0..N {
+            out.g[offset + i] = self.g[i];
+            for j in i..N {
+                out.h[offset + i][offset + j] = self.h[i][j];
+            }
+        }
+    }
+}
+
+/// Σ aᵢ bᵢ of two 3-vectors that depend on disjoint variables: `a` on the first A of the P
+/// variables, `b` on the next B (P = A + B). The Hessian of a product of such functions is
+/// block-structured (a's block scaled by b, b's by a, the outer product of the gradients off the
+/// diagonal), which costs far less than a general product in all P variables. This is the
+/// coupling of two edges' frames in the bending and twisting stencils.
+#[inline(always)]
+pub fn separable_dot<const A: usize, const B: usize, const P: usize>(
+    a: &[HD<A>; 3],
+    b: &[HD<B>; 3],
+) -> HD<P> {
+    debug_assert_eq!(A + B, P);
+    let mut r = HD::<P>::cst(0.0);
+    for k in 0..3 {
+        let (x, y) = (&a[k], &b[k]);
+        r.v += x.v * y.v;
+        for i in 0..A {
+            r.g[i] += x.g[i] * y.v;
+            for j in i..A {
+                r.h[i][j] += x.h[i][j] * y.v;
+            }
+            for j in 0..B {
+                r.h[i][A + j] += x.g[i] * y.g[j];
+            }
+        }
+        for i in 0..B {
+            r.g[A + i] += x.v * y.g[i];
+            for j in i..B {
+                r.h[A + i][A + j] += x.v * y.h[i][j];
+            }
+        }
+    }
+    r
+}
+
+/// Exact derivatives of a composition f(a(y), z) by the chain rule.
+///
+/// `inner` holds M intermediates a as functions of the P variables y; `outer` is f as a function
+/// of (a, z), a first (K = M + Q − P variables); the result is in the Q variables (y, z). An
+/// energy that depends on many variables only through a few intermediates is thereby
+/// differentiated in the small spaces (P and K) instead of all Q variables at once, which is
+/// what makes the bending and twisting stencils cheap.
+pub fn compose<const P: usize, const M: usize, const K: usize, const Q: usize>(
+    inner: &[HD<P>; M],
+    outer: &HD<K>,
+) -> HD<Q> {
+    debug_assert!(P <= Q && K + P == M + Q);
+    let z = Q - P;
+    let f = outer.hessian();
+    let mut r = HD::<Q>::cst(outer.v);
+    // w[k][j] = Σ_l ∂²f/∂a_k∂a_l ∂a_l/∂y_j
+    let mut w = [[0.0; P]; M];
+    for k in 0..M {
+        for (l, a) in inner.iter().enumerate() {
+            let fkl = f[k][l];
+            for j in 0..P {
+                w[k][j] += fkl * a.g[j];
+            }
+        }
+    }
+    for (k, a) in inner.iter().enumerate() {
+        let fk = outer.g[k];
+        for i in 0..P {
+            r.g[i] += fk * a.g[i];
+            let gi = a.g[i];
+            for j in i..P {
+                r.h[i][j] += fk * a.h[i][j] + gi * w[k][j];
+            }
+        }
+    }
+    for m in 0..z {
+        r.g[P + m] = outer.g[M + m];
+        for (k, a) in inner.iter().enumerate() {
+            let fkm = f[k][M + m];
+            for i in 0..P {
+                r.h[i][P + m] += fkm * a.g[i];
+            }
+        }
+        for n in m..z {
+            r.h[P + m][P + n] = f[M + m][M + n];
+        }
+    }
+    r
+}
+
 impl<const N: usize> Real for HD<N> {
-    #[inline]
+    #[inline(always)]
     fn cst(v: f64) -> Self {
         HD {
             v,
@@ -125,7 +232,7 @@ impl<const N: usize> Real for HD<N> {
             h: [[0.0; N]; N],
         }
     }
-    #[inline]
+    #[inline(always)]
     fn val(&self) -> f64 {
         self.v
     }
@@ -171,7 +278,7 @@ impl<const N: usize> Real for HD<N> {
 
 impl<const N: usize> Add for HD<N> {
     type Output = Self;
-    #[inline]
+    #[inline(always)]
     fn add(mut self, o: Self) -> Self {
         self.v += o.v;
         for i in 0..N {
@@ -185,7 +292,7 @@ impl<const N: usize> Add for HD<N> {
 }
 
 impl<const N: usize> AddAssign for HD<N> {
-    #[inline]
+    #[inline(always)]
     fn add_assign(&mut self, o: Self) {
         *self = *self + o;
     }
@@ -193,7 +300,7 @@ impl<const N: usize> AddAssign for HD<N> {
 
 impl<const N: usize> Sub for HD<N> {
     type Output = Self;
-    #[inline]
+    #[inline(always)]
     fn sub(mut self, o: Self) -> Self {
         self.v -= o.v;
         for i in 0..N {
@@ -208,7 +315,7 @@ impl<const N: usize> Sub for HD<N> {
 
 impl<const N: usize> Neg for HD<N> {
     type Output = Self;
-    #[inline]
+    #[inline(always)]
     fn neg(self) -> Self {
         self * -1.0
     }
@@ -216,7 +323,7 @@ impl<const N: usize> Neg for HD<N> {
 
 impl<const N: usize> Mul for HD<N> {
     type Output = Self;
-    #[inline]
+    #[inline(always)]
     fn mul(self, o: Self) -> Self {
         let mut r = Self::cst(self.v * o.v);
         for i in 0..N {
@@ -235,7 +342,7 @@ impl<const N: usize> Mul for HD<N> {
 #[allow(clippy::suspicious_arithmetic_impl)] // a / b = a · (1/b)
 impl<const N: usize> Div for HD<N> {
     type Output = Self;
-    #[inline]
+    #[inline(always)]
     fn div(self, o: Self) -> Self {
         self * o.recip()
     }
@@ -243,7 +350,7 @@ impl<const N: usize> Div for HD<N> {
 
 impl<const N: usize> Add<f64> for HD<N> {
     type Output = Self;
-    #[inline]
+    #[inline(always)]
     fn add(mut self, o: f64) -> Self {
         self.v += o;
         self
@@ -252,7 +359,7 @@ impl<const N: usize> Add<f64> for HD<N> {
 
 impl<const N: usize> Sub<f64> for HD<N> {
     type Output = Self;
-    #[inline]
+    #[inline(always)]
     fn sub(mut self, o: f64) -> Self {
         self.v -= o;
         self
@@ -261,7 +368,7 @@ impl<const N: usize> Sub<f64> for HD<N> {
 
 impl<const N: usize> Mul<f64> for HD<N> {
     type Output = Self;
-    #[inline]
+    #[inline(always)]
     fn mul(mut self, o: f64) -> Self {
         self.v *= o;
         for i in 0..N {
@@ -276,7 +383,7 @@ impl<const N: usize> Mul<f64> for HD<N> {
 
 impl<const N: usize> Div<f64> for HD<N> {
     type Output = Self;
-    #[inline]
+    #[inline(always)]
     fn div(self, o: f64) -> Self {
         self * (1.0 / o)
     }
@@ -454,5 +561,44 @@ mod tests {
         let d = f(a, b);
         assert!((d.v - r.v).abs() < 1e-15);
         assert!((d.g[0] - r.g[0]).abs() < 1e-14 && (d.g[1] - r.g[1]).abs() < 1e-14);
+    }
+
+    /// f(a(y), z) through `compose` equals the direct hyper-dual evaluation.
+    #[test]
+    fn composition_matches_direct_differentiation() {
+        let inner_f = |y: [HD<3>; 3]| -> [HD<3>; 2] {
+            [y[0] * y[1].sin() + y[2], (y[0] * y[2]).sqrt() * y[1]]
+        };
+        let outer_f = |a: [HD<5>; 2], z: [HD<5>; 2]| a[0] * a[1] * z[0] + (a[1] * z[1]).cos();
+        let vals = [0.7, -0.4, 1.3, 0.25, -1.1];
+        let x = HD::<5>::vars(&vals);
+        let direct = {
+            let y3 = [x[0], x[1], x[2]];
+            let a = [y3[0] * y3[1].sin() + y3[2], (y3[0] * y3[2]).sqrt() * y3[1]];
+            outer_f(a, [x[3], x[4]])
+        };
+        let a = inner_f(HD::<3>::vars(&[vals[0], vals[1], vals[2]]));
+        let o = HD::<4>::vars(&[a[0].v, a[1].v, vals[3], vals[4]]);
+        let outer = {
+            let e: [HD<5>; 4] = std::array::from_fn(|i| o[i].embed(0));
+            outer_f([e[0], e[1]], [e[2], e[3]])
+        };
+        // `outer` was built in 5 variables (one unused) to exercise `embed`; shrink it to 4.
+        let mut outer4 = HD::<4>::cst(outer.v);
+        for i in 0..4 {
+            outer4.g[i] = outer.g[i];
+            for j in i..4 {
+                outer4.h[i][j] = outer.h[i][j];
+            }
+        }
+        let r: HD<5> = compose::<3, 2, 4, 5>(&a, &outer4);
+        assert!((r.v - direct.v).abs() < 1e-14);
+        let (hr, hd) = (r.hessian(), direct.hessian());
+        for i in 0..5 {
+            assert!((r.g[i] - direct.g[i]).abs() < 1e-13, "g{i}");
+            for j in 0..5 {
+                assert!((hr[i][j] - hd[i][j]).abs() < 1e-12, "h{i}{j}");
+            }
+        }
     }
 }

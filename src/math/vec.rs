@@ -4,31 +4,31 @@ use super::dual::Real;
 
 pub type V3<T> = [T; 3];
 
-#[inline]
+#[inline(always)]
 pub fn lift<T: Real>(a: [f64; 3]) -> V3<T> {
     [T::cst(a[0]), T::cst(a[1]), T::cst(a[2])]
 }
-#[inline]
+#[inline(always)]
 pub fn add<T: Real>(a: V3<T>, b: V3<T>) -> V3<T> {
     [a[0] + b[0], a[1] + b[1], a[2] + b[2]]
 }
-#[inline]
+#[inline(always)]
 pub fn sub<T: Real>(a: V3<T>, b: V3<T>) -> V3<T> {
     [a[0] - b[0], a[1] - b[1], a[2] - b[2]]
 }
-#[inline]
+#[inline(always)]
 pub fn scale<T: Real>(a: V3<T>, s: T) -> V3<T> {
     [a[0] * s, a[1] * s, a[2] * s]
 }
-#[inline]
+#[inline(always)]
 pub fn scalef<T: Real>(a: V3<T>, s: f64) -> V3<T> {
     [a[0] * s, a[1] * s, a[2] * s]
 }
-#[inline]
+#[inline(always)]
 pub fn dot<T: Real>(a: V3<T>, b: V3<T>) -> T {
     a[0] * b[0] + a[1] * b[1] + a[2] * b[2]
 }
-#[inline]
+#[inline(always)]
 pub fn cross<T: Real>(a: V3<T>, b: V3<T>) -> V3<T> {
     [
         a[1] * b[2] - a[2] * b[1],
@@ -36,16 +36,16 @@ pub fn cross<T: Real>(a: V3<T>, b: V3<T>) -> V3<T> {
         a[0] * b[1] - a[1] * b[0],
     ]
 }
-#[inline]
+#[inline(always)]
 pub fn norm<T: Real>(a: V3<T>) -> T {
     dot(a, a).sqrt()
 }
-#[inline]
+#[inline(always)]
 pub fn normalize<T: Real>(a: V3<T>) -> V3<T> {
     scale(a, norm(a).recip())
 }
 /// Plain-f64 values of a generic vector.
-#[inline]
+#[inline(always)]
 pub fn value<T: Real>(a: V3<T>) -> [f64; 3] {
     [a[0].val(), a[1].val(), a[2].val()]
 }
@@ -53,7 +53,7 @@ pub fn value<T: Real>(a: V3<T>) -> [f64; 3] {
 /// Rotates `w` by the minimal rotation taking unit vector `a` to unit vector `b`
 /// (discrete parallel transport). Undefined only for `b = -a`, which callers avoid by
 /// limiting how far a tangent may turn in one Newton step.
-#[inline]
+#[inline(always)]
 pub fn transport<T: Real>(a: V3<T>, b: V3<T>, w: V3<T>) -> V3<T> {
     let c = dot(a, b);
     let k = cross(a, b);
@@ -62,8 +62,29 @@ pub fn transport<T: Real>(a: V3<T>, b: V3<T>, w: V3<T>) -> V3<T> {
     add(add(scale(w, c), cross(k, w)), scale(k, kw * f))
 }
 
+/// [`transport`] of a constant vector `w` from a constant unit vector `a`: the same rotation,
+/// with the constant operands kept as plain numbers (cheaper under automatic differentiation).
+#[inline(always)]
+pub fn transport_from<T: Real>(a: [f64; 3], b: V3<T>, w: [f64; 3]) -> V3<T> {
+    let c = b[0] * a[0] + b[1] * a[1] + b[2] * a[2];
+    // k = a × b
+    let k = [
+        b[2] * a[1] - b[1] * a[2],
+        b[0] * a[2] - b[2] * a[0],
+        b[1] * a[0] - b[0] * a[1],
+    ];
+    let kw = k[0] * w[0] + k[1] * w[1] + k[2] * w[2];
+    let f = kw * (c + 1.0).recip();
+    // w c + k × w + k (k·w)/(1 + c)
+    [
+        c * w[0] + k[1] * w[2] - k[2] * w[1] + k[0] * f,
+        c * w[1] + k[2] * w[0] - k[0] * w[2] + k[1] * f,
+        c * w[2] + k[0] * w[1] - k[1] * w[0] + k[2] * f,
+    ]
+}
+
 /// Signed angle from `a` to `b` about the unit axis `n` (both perpendicular to `n`).
-#[inline]
+#[inline(always)]
 pub fn signed_angle<T: Real>(a: V3<T>, b: V3<T>, n: V3<T>) -> T {
     dot(cross(a, b), n).atan2(dot(a, b))
 }

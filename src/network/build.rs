@@ -474,6 +474,7 @@ pub fn build(scene: &Scene) -> Result<Network, FieldError> {
             stencil.push(&mut terms, &mut state);
         }
     }
+    let splice_rods: Vec<usize> = splices.iter().flat_map(|s| [s[0].0, s[1].0]).collect();
     for [(ra, na), (rb, nb)] in splices {
         // Edge of rod a arriving at the joint, edge of rod b leaving it.
         let (rod_a, rod_b) = (&rods[ra], &rods[rb]);
@@ -495,6 +496,28 @@ pub fn build(scene: &Scene) -> Result<Network, FieldError> {
             stiffness: [rod_a.stiffness, rod_b.stiffness],
         };
         stencil.push(&mut terms, &mut state);
+    }
+    // Twist gauge: an isotropic rod that is straight at rest, touches no vertex frame and is not
+    // spliced to another rod has an energy that depends on its edge angles only through their
+    // differences (|κb| does not see θ when EI₁ = EI₂ and κ̄ = 0), so turning all of them together
+    // is a zero-energy mode. Fixing the first edge's angle removes it without changing any
+    // equilibrium, and keeps the Hessian positive definite instead of singular.
+    let mut no_gauge = vec![false; rods.len()];
+    for &r in &splice_rods {
+        no_gauge[r] = true;
+    }
+    for p in &table.ports {
+        no_gauge[p.rod] = true;
+    }
+    for b in &terms.bend {
+        if b.rest.iter().flatten().any(|v| v.abs() >= 1e-12) {
+            no_gauge[edge_rod[b.edges[0]]] = true;
+        }
+    }
+    for (ri, rod) in rods.iter().enumerate() {
+        if rod.stiffness.ei1 == rod.stiffness.ei2 && !no_gauge[ri] {
+            fixed[theta_var(rod.edges[0])] = true;
+        }
     }
     let frame_vars: Vec<usize> = (0..n_frames).map(|f| frame_base + 3 * f).collect();
     for p in &table.ports {

@@ -5,6 +5,7 @@ pub mod contact;
 pub mod joint;
 pub mod model;
 pub mod port;
+pub mod positions;
 pub mod problem;
 pub mod projection;
 pub mod rest;

@@ -80,6 +80,18 @@ impl NewtonProblem for Model {
     fn relative_residual(&self, grad: &[f64]) -> f64 {
         Model::relative_residual(self, grad)
     }
+    fn unknown_positions(&self) -> Option<Vec<[f64; 3]>> {
+        Some(Model::unknown_positions(self))
+    }
+    fn continuation_is_trivial(&self) -> bool {
+        self.terms.loads.is_empty()
+            && self.terms.torques.is_empty()
+            && self.prescribed.iter().all(|p| p.start == p.end)
+            && self
+                .prescribed_rotations
+                .iter()
+                .all(|p| p.rotation == [0.0; 3])
+    }
     fn set_continuation(&mut self, lambda: f64) {
         self.set_load(lambda);
         // Prescribed variables moved: reference frames must follow before the next assembly.

@@ -130,7 +130,15 @@ pub fn locate(src: &str, section: &str, item: &Item, field: &str) -> Option<(usi
     let start = found?;
     let section_pos = (toks[start].1, toks[start].2);
     if *item == Item::None {
-        return Some(field_in(&toks, start + 2, field).unwrap_or(section_pos));
+        // `field:` sits one level inside the value, so an explicit `Some(` around it is
+        // stepped over (`reference: Some(Reference(rod: ..))`).
+        let mut k = start + 2;
+        if toks.get(k).map(|t| &t.0) == Some(&Tok::Ident("Some".into()))
+            && toks.get(k + 1).map(|t| &t.0) == Some(&Tok::Open)
+        {
+            k += 2;
+        }
+        return Some(field_in(&toks, k, field).unwrap_or(section_pos));
     }
     // The section's value must be a bracketed list or map.
     let mut k = start + 2;
@@ -274,6 +282,22 @@ mod tests {
             Some((2, 56))
         );
         assert_eq!(locate(src, "rods", &Item::Index(7), "x"), Some((3, 5)));
+    }
+
+    #[test]
+    fn finds_fields_of_optional_sections_with_or_without_some() {
+        for (value, col) in [
+            ("Some((rod: \"a\", vertex: 1))", 32),
+            ("Some(Reference(rod: \"a\", vertex: 1))", 41),
+            ("Reference(rod: \"a\", vertex: 1)", 36),
+        ] {
+            let src = format!("Scene(\n    reference: {value},\n)");
+            assert_eq!(
+                locate(&src, "reference", &Item::None, "vertex"),
+                Some((2, col)),
+                "{value}"
+            );
+        }
     }
 
     #[test]

@@ -26,6 +26,10 @@ pub struct Scene {
     pub bounds: Vec<Bound>,
     #[serde(default)]
     pub target: Option<Target>,
+    /// (extension) A known equilibrium position of one input vertex, from an analytic
+    /// solution: `rodnet study convergence` measures the discretization error against it.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub reference: Option<Reference>,
     #[serde(default)]
     pub solver: Solver,
 }
@@ -250,6 +254,16 @@ pub struct Bound {
 #[serde(deny_unknown_fields)]
 pub enum Target {
     Sphere { center: [f64; 3], radius: f64 },
+}
+
+/// The equilibrium position of input vertex `vertex` of rod `rod`, m (vertex k is node
+/// k·subdivide, so it exists at every subdivision).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Reference {
+    pub rod: String,
+    pub vertex: usize,
+    pub position: [f64; 3],
 }
 
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]

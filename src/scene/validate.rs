@@ -536,6 +536,38 @@ pub fn validate(s: &Scene) -> Result<(), FieldError> {
         }
     }
 
+    if let Some(r) = &s.reference {
+        let err = |f: &str, msg: String| Err(FieldError::global("reference", f, msg));
+        if let Err(m) = vertex_ok(&r.rod, r.vertex) {
+            return err(
+                if m.starts_with("unknown") {
+                    "rod"
+                } else {
+                    "vertex"
+                },
+                m,
+            );
+        }
+        if !finite3(&r.position) {
+            return err("position", format!("must be finite, got {:?}", r.position));
+        }
+        // The error is relative to the vertex's displacement, so a reference at rest would
+        // divide by zero.
+        let rod = rods[r.rod.as_str()];
+        let rest = rod.points[r.vertex];
+        let scale = rod.points.iter().fold(0.0f64, |m, p| m.max(dist(p, &rest)));
+        if dist(&r.position, &rest) <= 1e-12 * scale {
+            return err(
+                "position",
+                format!(
+                    "is the rest position {rest:?} of vertex {} of rod \"{}\"; the error is \
+                     measured relative to the reference displacement, which must not be zero",
+                    r.vertex, r.rod
+                ),
+            );
+        }
+    }
+
     let sv = &s.solver;
     if !positive(sv.tolerance) {
         return Err(FieldError::global(

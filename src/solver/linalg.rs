@@ -4,6 +4,7 @@
 
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::llt::factor::LltRegularization;
+use faer::perm::PermRef;
 use faer::sparse::linalg::cholesky::{
     factorize_symbolic_cholesky, CholeskySymbolicParams, LltRef, SymbolicCholesky,
     SymmetricOrdering,
@@ -32,6 +33,16 @@ impl SparseCholesky {
     /// Builds the pattern from upper-triangle pairs (duplicates allowed; every diagonal entry must
     /// be present). Returns the solver and, for each pair, its index into [`Self::values`].
     pub fn new(n: usize, pairs: &[(usize, usize)]) -> (SparseCholesky, Vec<usize>) {
+        Self::with_order(n, pairs, None)
+    }
+
+    /// As [`Self::new`], with an elimination order (position k: the unknown eliminated k-th)
+    /// instead of AMD.
+    pub fn with_order(
+        n: usize,
+        pairs: &[(usize, usize)],
+        elimination: Option<&[usize]>,
+    ) -> (SparseCholesky, Vec<usize>) {
         let mut order: Vec<usize> = (0..pairs.len()).collect();
         order.sort_unstable_by_key(|&k| (pairs[k].1, pairs[k].0));
         let mut col_ptr = vec![0usize; n + 1];
@@ -65,10 +76,21 @@ impl SparseCholesky {
             "pattern lacks a diagonal entry"
         );
         let pattern = SymbolicSparseColMat::new_checked(n, n, col_ptr, None, row_idx);
+        let inverse: Vec<usize> = elimination.map_or_else(Vec::new, |fwd| {
+            let mut inv = vec![0; n];
+            for (k, &i) in fwd.iter().enumerate() {
+                inv[i] = k;
+            }
+            inv
+        });
+        let ordering = match elimination {
+            Some(fwd) => SymmetricOrdering::Custom(PermRef::new_checked(fwd, &inverse, n)),
+            None => SymmetricOrdering::Amd,
+        };
         let symbolic = factorize_symbolic_cholesky(
             pattern.as_ref(),
             Side::Upper,
-            SymmetricOrdering::Amd,
+            ordering,
             CholeskySymbolicParams::default(),
         )
         .expect("symbolic Cholesky analysis");

@@ -1,10 +1,12 @@
 //! Newton's method on the total energy, its linear algebra, and its settings.
 pub mod linalg;
 pub mod newton;
+pub mod ordering;
 pub mod problem;
 pub mod qp;
 pub mod settings;
 
 pub use newton::solve;
+pub use ordering::Ordering;
 pub use problem::NewtonProblem;
 pub use settings::{ConstraintReport, NewtonReport, NewtonSettings};

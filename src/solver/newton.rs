@@ -15,6 +15,7 @@
 use std::time::Instant;
 
 use super::linalg::SparseCholesky;
+use super::ordering::{nested_dissection, Ordering};
 use super::problem::NewtonProblem;
 use super::qp::StepQp;
 use super::settings::{ConstraintReport, NewtonReport, NewtonSettings};
@@ -24,6 +25,10 @@ use super::settings::{ConstraintReport, NewtonReport, NewtonSettings};
 const ATTEMPT_CAP: usize = 8;
 /// Smallest continuation increment, as a fraction of the whole load path.
 const MIN_INCREMENT: f64 = 1e-5;
+/// Residual to which intermediate continuation sub-steps are converged (or the solve's tolerance
+/// if looser): their states only start the next sub-step, and a few digits are enough for that.
+/// Iterating them to round-off cost the gridshell's form finding about a third of its iterations.
+const INTERMEDIATE_TOLERANCE: f64 = 1e-6;
 /// Relative residual below which a full Newton step on a positive definite Hessian may be
 /// accepted for reducing the residual when the Armijo test cannot resolve the energy change.
 const TRUSTED_RESIDUAL: f64 = 1e-4;
@@ -46,7 +51,11 @@ pub fn solve<P: NewtonProblem>(p: &mut P, s: &NewtonSettings) -> NewtonReport {
     let t0 = Instant::now();
     let n = p.num_free();
     let pairs = p.hessian_pattern();
-    let (chol, slots) = SparseCholesky::new(n, &pairs);
+    let order = (s.ordering == Ordering::NestedDissection)
+        .then(|| p.unknown_positions())
+        .flatten()
+        .map(|pts| nested_dissection(n, &pairs, &pts));
+    let (chol, slots) = SparseCholesky::with_order(n, &pairs, order.as_deref());
     p.set_hessian_slots(&slots);
     let steps = s.load_steps.max(1);
     // Only a problem with constraints builds a QP; without, every step is the Cholesky solve.
@@ -80,21 +89,54 @@ pub fn solve<P: NewtonProblem>(p: &mut P, s: &NewtonSettings) -> NewtonReport {
     let mut lam = 0.0;
     let mut inc = 1.0 / steps as f64;
     let mut prev: Option<(f64, P::Snapshot)> = None;
-    'steps: for k in 1..=steps {
+    // A start that is not in equilibrium at λ = 0 (a form-finding guess; a rest state always is)
+    // is equilibrated before the path starts: every sub-step then begins from an equilibrium, and
+    // the start's own imbalance is not mistaken for a too-large increment.
+    let trivial = p.continuation_is_trivial();
+    p.set_continuation(if trivial { 1.0 } else { 0.0 });
+    let mut start_iterations = 0;
+    if trivial {
+        // Nothing moves along the path (a form-finding step with fixed supports and no loads):
+        // the solve is the start's equilibration, to the full tolerance.
+        match st.iterate(p, s, s.max_iterations, (steps, steps)) {
+            Outcome::Converged(_) => st.report.converged = true,
+            Outcome::Failed(msg) => st.fail(msg),
+        }
+        st.report.substeps = 1;
+        st.report.step_iterations = vec![st.report.iterations];
+    } else if p.assemble(&mut st.g, None).is_finite() && p.relative_residual(&st.g) > s.tolerance {
+        let intermediate = s.clone().tolerance(s.tolerance.max(INTERMEDIATE_TOLERANCE));
+        let saved = p.snapshot();
+        match st.iterate(p, &intermediate, s.max_iterations, (0, steps)) {
+            Outcome::Converged(_) => st.report.substeps += 1,
+            // Not fatal: the path then starts from the guess itself, as it would without this.
+            Outcome::Failed(_) => {
+                st.report.retries += 1;
+                p.restore(&saved);
+            }
+        }
+        start_iterations = st.report.iterations;
+    }
+    let first = if trivial { steps + 1 } else { 1 };
+    'steps: for k in first..=steps {
         let target = k as f64 / steps as f64;
+        // The start's equilibration has its own budget but is reported with the first step.
         let its_before = st.report.iterations;
+        let reported_before = its_before - if k == 1 { start_iterations } else { 0 };
         while lam < target {
             let mut next = (lam + inc).min(target);
             if target - next < 0.25 * inc {
                 next = target;
             }
             let saved = p.snapshot();
-            if let Some((lp, snap)) = &prev {
-                if lam > *lp {
+            match &prev {
+                Some((lp, snap)) if lam > *lp => {
                     p.extrapolate(snap, ((next - lam) / (lam - lp)).min(2.0));
+                    p.set_continuation(next);
                 }
+                Some(_) => p.set_continuation(next),
+                None => st.tangent_predict(p, lam, next),
             }
-            p.set_continuation(next);
             let minimal = inc <= MIN_INCREMENT * 1.0001;
             // `max_iterations` bounds the Newton iterations of a whole load step, sub-steps
             // and retries included.
@@ -107,7 +149,12 @@ pub fn solve<P: NewtonProblem>(p: &mut P, s: &NewtonSettings) -> NewtonReport {
             } else {
                 ATTEMPT_CAP.min(remaining)
             };
-            match st.iterate(p, s, cap, (k, steps)) {
+            let tolerance = if next == 1.0 {
+                s.tolerance
+            } else {
+                s.tolerance.max(INTERMEDIATE_TOLERANCE)
+            };
+            match st.iterate(p, &s.clone().tolerance(tolerance), cap, (k, steps)) {
                 Outcome::Converged(its) => {
                     st.report.substeps += 1;
                     prev = Some((lam, saved));
@@ -121,7 +168,7 @@ pub fn solve<P: NewtonProblem>(p: &mut P, s: &NewtonSettings) -> NewtonReport {
                         st.fail(msg);
                         st.report
                             .step_iterations
-                            .push(st.report.iterations - its_before);
+                            .push(st.report.iterations - reported_before);
                         break 'steps;
                     }
                     st.report.retries += 1;
@@ -132,7 +179,7 @@ pub fn solve<P: NewtonProblem>(p: &mut P, s: &NewtonSettings) -> NewtonReport {
         }
         st.report
             .step_iterations
-            .push(st.report.iterations - its_before);
+            .push(st.report.iterations - reported_before);
         if k == steps {
             st.report.converged = st.report.message.is_none();
         }
@@ -363,6 +410,37 @@ impl Newton {
         }
     }
 
+    /// First sub-step of the path, from an equilibrium at `lam`: moves the free unknowns by the
+    /// linear response to the increment, δ = −H⁻¹ (g(λ_next) − g(λ)) at fixed free unknowns, so
+    /// that prescribed ends do not start by crushing their first edges. Kept only if it lowers
+    /// the energy at `next`. Later sub-steps use the secant through two equilibria instead (a
+    /// tangent predictor there cost the cantilever iterations; docs/design.md).
+    fn tangent_predict<P: NewtonProblem>(&mut self, p: &mut P, lam: f64, next: f64) {
+        let n = self.g.len();
+        if self.qp.is_some() {
+            // The linear response ignores contact and bounds: it could jump through an obstacle.
+            p.set_continuation(next);
+            return;
+        }
+        p.set_continuation(lam);
+        let e0 = p.assemble(&mut self.g, Some(&mut self.chol.values));
+        let factored = e0.is_finite() && self.factor_regularized().is_some();
+        p.set_continuation(next);
+        if !factored || n == 0 {
+            return;
+        }
+        let e1 = p.assemble(&mut self.d, None);
+        for i in 0..n {
+            self.d[i] = self.g[i] - self.d[i];
+        }
+        self.chol.solve(&mut self.d);
+        let alpha = p.max_step(&self.d).min(1.0);
+        let e = p.trial_energy(&self.d, alpha);
+        if e.is_finite() && e < e1 {
+            p.accept(&self.d, alpha);
+        }
+    }
+
     /// Factors H + τI as for an unconstrained step, then solves the step QP with it at the
     /// current iterate. Returns the shift and the relative stationarity residual.
     fn constrained_step<P: NewtonProblem>(&mut self, p: &mut P) -> Result<(f64, f64), String> {
@@ -399,6 +477,11 @@ impl Newton {
     }
 
     /// Factors H + τI with the smallest τ of the sequence 0, τ₀, 10τ₀, … that succeeds.
+    ///
+    /// Skipping the unshifted attempt while it keeps failing was tried: it saves a
+    /// factorization per indefinite iteration, but the shift then lingers (it decays ×10 per
+    /// iteration) and turns Newton's final quadratic convergence linear (gridshell cap steps:
+    /// 8 iterations instead of 5).
     fn factor_regularized(&mut self) -> Option<f64> {
         let ts = Instant::now();
         let r = self.factor_regularized_inner();

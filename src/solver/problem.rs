@@ -35,6 +35,16 @@ pub trait NewtonProblem {
     fn accept(&mut self, step: &[f64], alpha: f64);
     /// Largest residual relative to the problem's force (and moment) scale.
     fn relative_residual(&self, grad: &[f64]) -> f64;
+    /// A point in space for every free unknown (where its node, edge or joint is), for the
+    /// geometric nested-dissection ordering; `None` if the problem has no geometry.
+    fn unknown_positions(&self) -> Option<Vec<[f64; 3]>> {
+        None
+    }
+    /// True when the continuation parameter changes nothing (no loads, no prescribed motion):
+    /// the solve is then one equilibration, without a path.
+    fn continuation_is_trivial(&self) -> bool {
+        false
+    }
     /// Sets the continuation parameter (load factor, prescribed motions) in [0, 1].
     fn set_continuation(&mut self, lambda: f64);
     /// Size of a perturbation along `direction` that is small for the problem's geometry.

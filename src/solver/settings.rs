@@ -12,6 +12,8 @@ pub struct NewtonSettings {
     pub load_steps: usize,
     /// Called after every iteration with (load step, iteration, relative residual, energy).
     pub progress: Option<fn(usize, usize, f64, f64)>,
+    /// Fill-reducing ordering of the factorization.
+    pub ordering: super::Ordering,
 }
 
 impl Default for NewtonSettings {
@@ -21,6 +23,7 @@ impl Default for NewtonSettings {
             max_iterations: 200,
             load_steps: 1,
             progress: None,
+            ordering: super::Ordering::Amd,
         }
     }
 }
@@ -32,6 +35,10 @@ impl NewtonSettings {
     }
     pub fn max_iterations(mut self, n: usize) -> Self {
         self.max_iterations = n;
+        self
+    }
+    pub fn ordering(mut self, o: super::Ordering) -> Self {
+        self.ordering = o;
         self
     }
     pub fn load_steps(mut self, n: usize) -> Self {

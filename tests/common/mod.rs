@@ -72,6 +72,7 @@ pub fn scene(material: Material, rods: Vec<Rod>) -> Scene {
         obstacles: vec![],
         bounds: vec![],
         target: None,
+        reference: None,
         solver: Solver::default(),
     }
 }

@@ -1,0 +1,126 @@
+//! Hemisphere form finding over rods per family n and edges per spacing K, and the pieces of
+//! one Newton iteration at the n = 12, K = 8 equilibrium (docs/performance.md).
+//!
+//! `cargo bench --bench gridshell` (all), `cargo bench --bench gridshell -- form_finding`.
+//! The larger cases take seconds per run: each is sampled 3 times.
+
+use rodnet::gridshell::footprint::{footprint, HemisphereSpec};
+use rodnet::gridshell::formfind::DEFAULT_START_CAP;
+use rodnet::gridshell::job::run;
+use rodnet::network::build::build;
+use rodnet::network::model::{Assembly, Model};
+use rodnet::solver::linalg::SparseCholesky;
+use rodnet::solver::ordering::nested_dissection;
+use rodnet::solver::NewtonProblem;
+
+fn main() {
+    divan::main();
+}
+
+fn spec(case: &str) -> HemisphereSpec {
+    let (n, k) = case.split_once('x').unwrap();
+    HemisphereSpec::new(1.0, n.parse().unwrap(), k.parse().unwrap())
+}
+
+/// The whole form finding from the footprint (generation, cap path, Newton), "n x K".
+#[divan::bench(
+    args = ["8x4", "12x4", "16x4", "24x4", "8x8", "12x8", "16x8", "24x8", "8x16", "12x16",
+            "16x16", "24x16", "8x32", "12x32"],
+    sample_count = 3,
+    sample_size = 1
+)]
+fn form_finding(case: &str) -> bool {
+    run(&spec(case), DEFAULT_START_CAP, None)
+        .unwrap()
+        .results
+        .converged
+}
+
+/// From the analytic net of the hemisphere (`--start-cap 1`).
+#[divan::bench(args = ["12x4", "12x8", "24x8"], sample_count = 5, sample_size = 1)]
+fn from_analytic_net(case: &str) -> bool {
+    run(&spec(case), 1.0, None).unwrap().results.converged
+}
+
+/// The n = 12, K = 8 model at its equilibrium, with its Hessian pattern.
+fn equilibrium() -> (Model, Vec<(usize, usize)>) {
+    let s = spec("12x8");
+    let r = run(&s, DEFAULT_START_CAP, None).unwrap();
+    let mut m = build(&footprint(&s).scene).unwrap().model;
+    m.state = r.network.model.state.clone();
+    m.set_load(1.0);
+    let pairs = m.hessian_pattern();
+    (m, pairs)
+}
+
+fn assembled(nd: bool) -> (Model, SparseCholesky) {
+    let (mut m, pairs) = equilibrium();
+    let order = nd.then(|| nested_dissection(m.n_free, &pairs, &m.unknown_positions()));
+    let (mut chol, slots) = SparseCholesky::with_order(m.n_free, &pairs, order.as_deref());
+    m.set_slots(&slots);
+    let mut g = vec![0.0; m.n_free];
+    m.assemble(&mut Assembly {
+        grad: &mut g,
+        full_grad: None,
+        hess: Some(&mut chol.values),
+    });
+    (m, chol)
+}
+
+#[divan::bench]
+fn hemisphere_assembly(bencher: divan::Bencher) {
+    let (m, mut chol) = assembled(false);
+    let mut g = vec![0.0; m.n_free];
+    bencher.bench_local(|| {
+        m.assemble(&mut Assembly {
+            grad: &mut g,
+            full_grad: None,
+            hess: Some(&mut chol.values),
+        })
+    });
+}
+
+#[divan::bench(args = [false, true])]
+fn hemisphere_symbolic(bencher: divan::Bencher, nd: bool) {
+    let (m, pairs) = equilibrium();
+    bencher.bench_local(|| {
+        let order = nd.then(|| nested_dissection(m.n_free, &pairs, &m.unknown_positions()));
+        SparseCholesky::with_order(m.n_free, &pairs, order.as_deref())
+            .0
+            .factor_nnz()
+    });
+}
+
+#[divan::bench(args = [false, true])]
+fn hemisphere_factorization(bencher: divan::Bencher, nd: bool) {
+    let (_, mut chol) = assembled(nd);
+    let shift = 1e-10 * chol.diagonal_scale();
+    bencher.bench_local(|| chol.factor(shift).is_ok());
+}
+
+/// Assembly, factorization, solve, length projection, one trial energy and the update.
+#[divan::bench]
+fn hemisphere_newton_iteration(bencher: divan::Bencher) {
+    let (m0, mut chol) = assembled(false);
+    let n = m0.n_free;
+    let shift = 1e-10 * chol.diagonal_scale();
+    let (mut g, mut d, mut c) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+    bencher
+        .with_inputs(|| m0.clone())
+        .bench_local_values(|mut m: Model| {
+            let e0 = m.assemble(&mut Assembly {
+                grad: &mut g,
+                full_grad: None,
+                hess: Some(&mut chol.values),
+            });
+            chol.factor(shift).expect("positive definite");
+            for i in 0..n {
+                d[i] = -g[i];
+            }
+            chol.solve(&mut d);
+            m.step_correction(&d, &mut c);
+            let e1 = m.trial_energy(&d, 1.0);
+            m.accept(&d, 1.0);
+            (e0, e1)
+        });
+}
