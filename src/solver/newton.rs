@@ -15,7 +15,7 @@
 use std::time::Instant;
 
 use super::linalg::SparseCholesky;
-use super::ordering::{nested_dissection, Ordering};
+use super::ordering::{nested_dissection, Ordering, AUTO_FILL_RATIO, AUTO_MIN_UNKNOWNS};
 use super::problem::NewtonProblem;
 use super::qp::StepQp;
 use super::settings::{ConstraintReport, NewtonReport, NewtonSettings};
@@ -51,11 +51,7 @@ pub fn solve<P: NewtonProblem>(p: &mut P, s: &NewtonSettings) -> NewtonReport {
     let t0 = Instant::now();
     let n = p.num_free();
     let pairs = p.hessian_pattern();
-    let order = (s.ordering == Ordering::NestedDissection)
-        .then(|| p.unknown_positions())
-        .flatten()
-        .map(|pts| nested_dissection(n, &pairs, &pts));
-    let (chol, slots) = SparseCholesky::with_order(n, &pairs, order.as_deref());
+    let (chol, slots) = factorization(p, n, &pairs, s.ordering);
     p.set_hessian_slots(&slots);
     let steps = s.load_steps.max(1);
     // Only a problem with constraints builds a QP; without, every step is the Cholesky solve.
@@ -198,6 +194,33 @@ pub fn solve<P: NewtonProblem>(p: &mut P, s: &NewtonSettings) -> NewtonReport {
         });
     }
     st.report
+}
+
+/// The sparse Cholesky of the problem's Hessian pattern, with the ordering `ordering` asks for.
+fn factorization<P: NewtonProblem>(
+    p: &P,
+    n: usize,
+    pairs: &[(usize, usize)],
+    ordering: Ordering,
+) -> (SparseCholesky, Vec<usize>) {
+    let try_nd = match ordering {
+        Ordering::Amd => false,
+        Ordering::NestedDissection => true,
+        Ordering::Auto => n >= AUTO_MIN_UNKNOWNS,
+    };
+    let Some(pts) = try_nd.then(|| p.unknown_positions()).flatten() else {
+        return SparseCholesky::new(n, pairs);
+    };
+    let nd = SparseCholesky::with_order(n, pairs, Some(&nested_dissection(n, pairs, &pts)));
+    if ordering == Ordering::NestedDissection {
+        return nd;
+    }
+    let amd = SparseCholesky::new(n, pairs);
+    if (nd.0.factor_nnz() as f64) < AUTO_FILL_RATIO * amd.0.factor_nnz() as f64 {
+        nd
+    } else {
+        amd
+    }
 }
 
 struct Newton {

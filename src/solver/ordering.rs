@@ -12,17 +12,26 @@
 const LEAF: usize = 64;
 
 /// Which ordering the factorization uses.
-///
-/// Measured on hemispherical gridshells of 1.6e3 to 1.1e5 unknowns (docs/performance.md), this
-/// dissection gives 0.6–1.6× AMD's fill but never a faster factorization (1.1e5 unknowns: 2.8M
-/// against 3.7M non-zeros, 66 against 24 ms): rods between crossings are chains, which AMD
-/// already orders well. So AMD is the default; the dissection stays available for denser meshes.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Ordering {
+    /// AMD, or from [`AUTO_MIN_UNKNOWNS`] unknowns the nested dissection when its factor has
+    /// less than [`AUTO_FILL_RATIO`] of AMD's non-zeros.
     #[default]
+    Auto,
     Amd,
     NestedDissection,
 }
+
+/// Below this many unknowns `Auto` is AMD without trying the dissection (its symbolic analysis
+/// would cost more than it could save).
+pub const AUTO_MIN_UNKNOWNS: usize = 20_000;
+
+/// Measured on hemispherical gridshells (docs/performance.md): where the dissection's factor has
+/// 0.76–0.79 of AMD's non-zeros its factorization is still slower (rods between crossings are
+/// chains, which AMD orders well; n = 24, K = 32: 66 against 23 ms), where it has about half it
+/// is twice as fast (n = 48, K = 8, 1.0e5 unknowns: 5.8M against 11.0M non-zeros, 200 against
+/// 397 ms).
+pub const AUTO_FILL_RATIO: f64 = 0.6;
 
 /// Geometric nested dissection of the graph of `pairs` (upper-triangle (row, column) entries,
 /// duplicates and the diagonal allowed) over unknowns placed at `points`. Returns the

@@ -23,7 +23,7 @@ impl Default for NewtonSettings {
             max_iterations: 200,
             load_steps: 1,
             progress: None,
-            ordering: super::Ordering::Amd,
+            ordering: super::Ordering::Auto,
         }
     }
 }
