@@ -9,13 +9,10 @@
 
 use super::{diff3, same, Category, Reduced, Term};
 use crate::math::dual::{compose, separable_dot};
-use crate::math::vec::{dot, V3};
+use crate::math::vec::dot;
 use crate::math::{Real, HD};
 use crate::network::state::State;
-use crate::rod::frames::{
-    bend_quadratic, curvature_binormal, material_curvature, oriented_frame_of,
-    oriented_reference_frame, FrameDots, RefFrame,
-};
+use crate::rod::frames::{bend_quadratic, oriented_reference_frame, FrameDots, RefFrame};
 
 #[derive(Debug, Clone)]
 pub struct Bend {
@@ -28,22 +25,6 @@ pub struct Bend {
     pub voronoi: f64,
     /// (EI1, EI2) of each edge.
     pub ei: [[f64; 2]; 2],
-}
-
-impl Bend {
-    /// Material curvatures (κ1, κ2) in the frames of edge 0 and edge 1, from the reduced
-    /// variables (edge vectors along the stencil, angles).
-    pub fn curvatures<T: Real>(&self, st: &State, y: &[T; 8]) -> [[T; 2]; 2] {
-        let e0: V3<T> = [y[0], y[1], y[2]];
-        let e1: V3<T> = [y[3], y[4], y[5]];
-        let f0 = oriented_frame_of(&st.edges[self.edges[0]], self.signs[0], e0, y[6]);
-        let f1 = oriented_frame_of(&st.edges[self.edges[1]], self.signs[1], e1, y[7]);
-        let kb = curvature_binormal(f0.t, f1.t);
-        [
-            material_curvature(kb, f0.m1, f0.m2),
-            material_curvature(kb, f1.m1, f1.m2),
-        ]
-    }
 }
 
 /// y = (x₁ − x₀, x₂ − x₁, θ⁰, θ¹).
@@ -60,16 +41,37 @@ impl Bend {
         FrameDots::new(f0, f1, |a, b| dot(*a, *b)).binormal_projections()
     }
 
-    /// Energy from the projections and the two angles: with θ' = sign·θ,
-    /// κ = (cos θ' κb·v − sin θ' κb·u, −cos θ' κb·u − sin θ' κb·v).
-    fn energy_of<T: Real>(&self, p: &[T; 4], theta: [T; 2]) -> T {
-        let mut e = T::cst(0.0);
-        for j in 0..2 {
+    /// Material curvatures (κ1, κ2) in the frames of edge 0 and edge 1 from the projections and
+    /// the two angles: with θ' = sign·θ, κ = (cos θ' κb·v − sin θ' κb·u, −cos θ' κb·u − sin θ' κb·v).
+    fn material_curvatures<T: Real>(&self, p: &[T; 4], theta: [T; 2]) -> [[T; 2]; 2] {
+        std::array::from_fn(|j| {
             let th = theta[j] * self.signs[j];
             let (s, c) = (th.sin(), th.cos());
             let (a, b) = (p[2 * j], p[2 * j + 1]);
-            let k = [c * b - s * a, -(c * a + s * b)];
-            e += bend_quadratic(k, self.rest[j], self.ei[j][0], self.ei[j][1]);
+            [c * b - s * a, -(c * a + s * b)]
+        })
+    }
+
+    /// The projections from the reduced variables (edge vectors along the stencil).
+    fn projections_at<T: Real>(&self, st: &State, y: &[T; 8]) -> [T; 4] {
+        let f0 =
+            oriented_reference_frame(&st.edges[self.edges[0]], self.signs[0], [y[0], y[1], y[2]]);
+        let f1 =
+            oriented_reference_frame(&st.edges[self.edges[1]], self.signs[1], [y[3], y[4], y[5]]);
+        Self::projections(&f0, &f1)
+    }
+
+    /// Material curvatures from the reduced variables (edge vectors along the stencil, angles).
+    pub fn curvatures<T: Real>(&self, st: &State, y: &[T; 8]) -> [[T; 2]; 2] {
+        self.material_curvatures(&self.projections_at(st, y), [y[6], y[7]])
+    }
+
+    /// Energy from the projections and the two angles.
+    fn energy_of<T: Real>(&self, p: &[T; 4], theta: [T; 2]) -> T {
+        let k = self.material_curvatures(p, theta);
+        let mut e = T::cst(0.0);
+        for j in 0..2 {
+            e += bend_quadratic(k[j], self.rest[j], self.ei[j][0], self.ei[j][1]);
         }
         e * (0.25 / self.voronoi)
     }
@@ -78,11 +80,7 @@ impl Bend {
 impl Reduced<11, 8> for Bend {
     const MAP: [[(usize, f64); 2]; 8] = STENCIL_MAP;
     fn eval_reduced<T: Real>(&self, st: &State, y: &[T; 8]) -> T {
-        let f0 =
-            oriented_reference_frame(&st.edges[self.edges[0]], self.signs[0], [y[0], y[1], y[2]]);
-        let f1 =
-            oriented_reference_frame(&st.edges[self.edges[1]], self.signs[1], [y[3], y[4], y[5]]);
-        self.energy_of(&Self::projections(&f0, &f1), [y[6], y[7]])
+        self.energy_of(&self.projections_at(st, y), [y[6], y[7]])
     }
 }
 

@@ -116,29 +116,6 @@ impl<const N: usize> HD<N> {
     }
 }
 
-impl<const N: usize> HD<N> {
-    /// The same number as a function of `P ≥ N` variables, of which its own are
-    /// `offset..offset + N` (the others do not enter it).
-    pub fn embed<const P: usize>(&self, offset: usize) -> HD<P> {
-        let mut r = HD::<P>::cst(0.0);
-        self.embed_into(&mut r, offset);
-        r
-    }
-
-    /// [`Self::embed`] into a zero-initialized `out` (no copy of the large result).
-    #[inline(always)]
-    pub fn embed_into<const P: usize>(&self, out: &mut HD<P>, offset: usize) {
-        debug_assert!(offset + N <= P);
-        out.v = self.v;
-        for i in 0..N {
-            out.g[offset + i] = self.g[i];
-            for j in i..N {
-                out.h[offset + i][offset + j] = self.h[i][j];
-            }
-        }
-    }
-}
-
 /// Σ aᵢ bᵢ of two 3-vectors that depend on disjoint variables: `a` on the first A of the P
 /// variables, `b` on the next B (P = A + B). The Hessian of a product of such functions is
 /// block-structured (a's block scaled by b, b's by a, the outer product of the gradients off the
@@ -570,6 +547,7 @@ mod tests {
             [y[0] * y[1].sin() + y[2], (y[0] * y[2]).sqrt() * y[1]]
         };
         let outer_f = |a: [HD<5>; 2], z: [HD<5>; 2]| a[0] * a[1] * z[0] + (a[1] * z[1]).cos();
+        // The same outer function, in (a, z) as its own 4 variables.
         let vals = [0.7, -0.4, 1.3, 0.25, -1.1];
         let x = HD::<5>::vars(&vals);
         let direct = {
@@ -579,18 +557,7 @@ mod tests {
         };
         let a = inner_f(HD::<3>::vars(&[vals[0], vals[1], vals[2]]));
         let o = HD::<4>::vars(&[a[0].v, a[1].v, vals[3], vals[4]]);
-        let outer = {
-            let e: [HD<5>; 4] = std::array::from_fn(|i| o[i].embed(0));
-            outer_f([e[0], e[1]], [e[2], e[3]])
-        };
-        // `outer` was built in 5 variables (one unused) to exercise `embed`; shrink it to 4.
-        let mut outer4 = HD::<4>::cst(outer.v);
-        for i in 0..4 {
-            outer4.g[i] = outer.g[i];
-            for j in i..4 {
-                outer4.h[i][j] = outer.h[i][j];
-            }
-        }
+        let outer4 = o[0] * o[1] * o[2] + (o[1] * o[3]).cos();
         let r: HD<5> = compose::<3, 2, 4, 5>(&a, &outer4);
         assert!((r.v - direct.v).abs() < 1e-14);
         let (hr, hd) = (r.hessian(), direct.hessian());

@@ -6,7 +6,7 @@
 //! their exact derivatives come from automatic differentiation.
 
 use crate::math::vec::*;
-use crate::math::{Real, HD};
+use crate::math::Real;
 
 /// Reference frame of an edge at the last accepted iterate.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -60,24 +60,6 @@ pub fn oriented_reference_frame<T: Real>(r: &EdgeRef, sign: f64, along: V3<T>) -
         t: scalef(t, sign),
         u,
         v: scalef(v, sign),
-    }
-}
-
-impl<const N: usize> RefFrame<HD<N>> {
-    /// The frame as a function of `P` variables, its own being `offset..offset + N`.
-    pub fn embed<const P: usize>(&self, offset: usize) -> RefFrame<HD<P>> {
-        let z = HD::<P>::cst(0.0);
-        let mut f = RefFrame {
-            t: [z; 3],
-            u: [z; 3],
-            v: [z; 3],
-        };
-        for i in 0..3 {
-            self.t[i].embed_into(&mut f.t[i], offset);
-            self.u[i].embed_into(&mut f.u[i], offset);
-            self.v[i].embed_into(&mut f.v[i], offset);
-        }
-        f
     }
 }
 
