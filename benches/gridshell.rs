@@ -4,6 +4,8 @@
 //! `cargo bench --bench gridshell` (all), `cargo bench --bench gridshell -- form_finding`.
 //! The larger cases take seconds per run: each is sampled 3 times.
 
+mod common;
+
 use rodnet::gridshell::footprint::{footprint, HemisphereSpec};
 use rodnet::gridshell::formfind::DEFAULT_START_CAP;
 use rodnet::gridshell::job::run;
@@ -11,7 +13,6 @@ use rodnet::network::build::build;
 use rodnet::network::model::{Assembly, Model};
 use rodnet::solver::linalg::SparseCholesky;
 use rodnet::solver::ordering::nested_dissection;
-use rodnet::solver::NewtonProblem;
 
 fn main() {
     divan::main();
@@ -102,25 +103,6 @@ fn hemisphere_factorization(bencher: divan::Bencher, nd: bool) {
 #[divan::bench]
 fn hemisphere_newton_iteration(bencher: divan::Bencher) {
     let (m0, mut chol) = assembled(false);
-    let n = m0.n_free;
     let shift = 1e-10 * chol.diagonal_scale();
-    let (mut g, mut d, mut c) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
-    bencher
-        .with_inputs(|| m0.clone())
-        .bench_local_values(|mut m: Model| {
-            let e0 = m.assemble(&mut Assembly {
-                grad: &mut g,
-                full_grad: None,
-                hess: Some(&mut chol.values),
-            });
-            chol.factor(shift).expect("positive definite");
-            for i in 0..n {
-                d[i] = -g[i];
-            }
-            chol.solve(&mut d);
-            m.step_correction(&d, &mut c);
-            let e1 = m.trial_energy(&d, 1.0);
-            m.accept(&d, 1.0);
-            (e0, e1)
-        });
+    common::bench_newton_iteration(bencher, &m0, &mut chol, shift);
 }

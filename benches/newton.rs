@@ -6,13 +6,15 @@
 //!   one full Newton iteration (assembly, factorization, solve, length projection, line search).
 //! - `cantilever_solve`: the large-deflection cantilever (PL²/EI = 2) from rest, N edges.
 
+mod common;
+
 use std::collections::BTreeMap;
 
 use rodnet::network::build::build;
 use rodnet::network::model::{Assembly, Model};
 use rodnet::scene::types::*;
 use rodnet::solver::linalg::SparseCholesky;
-use rodnet::solver::{NewtonProblem, NewtonSettings};
+use rodnet::solver::NewtonSettings;
 
 fn main() {
     divan::main();
@@ -134,26 +136,7 @@ fn grid_factorization(bencher: divan::Bencher) {
 #[divan::bench]
 fn grid_newton_iteration(bencher: divan::Bencher) {
     let (m0, mut chol) = grid_model();
-    let n = m0.n_free;
-    let (mut g, mut d, mut c) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
-    bencher
-        .with_inputs(|| m0.clone())
-        .bench_local_values(|mut m: Model| {
-            let e0 = m.assemble(&mut Assembly {
-                grad: &mut g,
-                full_grad: None,
-                hess: Some(&mut chol.values),
-            });
-            chol.factor(0.0).expect("positive definite");
-            for i in 0..n {
-                d[i] = -g[i];
-            }
-            chol.solve(&mut d);
-            m.step_correction(&d, &mut c);
-            let e1 = m.trial_energy(&d, 1.0);
-            m.accept(&d, 1.0);
-            (e0, e1)
-        });
+    common::bench_newton_iteration(bencher, &m0, &mut chol, 0.0);
 }
 
 #[divan::bench(args = [10, 40, 160, 640])]

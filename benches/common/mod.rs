@@ -1,0 +1,36 @@
+//! Shared by the benchmarks: one Newton iteration measured the same way everywhere.
+
+use rodnet::network::model::{Assembly, Model};
+use rodnet::solver::linalg::SparseCholesky;
+use rodnet::solver::NewtonProblem;
+
+/// Benchmarks one full Newton iteration from a fresh copy of `m0` each time: assembly,
+/// factorization of H + shift·I, solve, length projection, one trial energy and the update.
+/// `chol` must be built on `m0`'s Hessian pattern (slots set).
+pub fn bench_newton_iteration(
+    bencher: divan::Bencher,
+    m0: &Model,
+    chol: &mut SparseCholesky,
+    shift: f64,
+) {
+    let n = m0.n_free;
+    let (mut g, mut d, mut c) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+    bencher
+        .with_inputs(|| m0.clone())
+        .bench_local_values(|mut m: Model| {
+            let e0 = m.assemble(&mut Assembly {
+                grad: &mut g,
+                full_grad: None,
+                hess: Some(&mut chol.values),
+            });
+            chol.factor(shift).expect("positive definite");
+            for i in 0..n {
+                d[i] = -g[i];
+            }
+            chol.solve(&mut d);
+            m.step_correction(&d, &mut c);
+            let e1 = m.trial_energy(&d, 1.0);
+            m.accept(&d, 1.0);
+            (e0, e1)
+        });
+}
