@@ -275,7 +275,6 @@ fn bad_input_is_refused_before_solving_and_writes_nothing() {
         ),
     ];
     for (args, expected) in cases {
-        let t0 = std::time::Instant::now();
         let out = study(&args, &csv);
         let err = text(&out.stderr);
         assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
@@ -284,8 +283,10 @@ fn bad_input_is_refused_before_solving_and_writes_nothing() {
             "{args:?}: {err}"
         );
         assert!(!err.contains("panicked"), "{err}");
+        // Refused before any level was solved: no table row was printed (speed is not
+        // asserted in tests).
         assert!(
-            t0.elapsed().as_secs_f64() < 5.0,
+            text(&out.stdout).is_empty(),
             "{args:?} solved before refusing"
         );
         assert_eq!(std::fs::read_to_string(&csv).unwrap(), "old", "{args:?}");
