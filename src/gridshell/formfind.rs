@@ -181,7 +181,10 @@ fn cap_path(
         let tolerance = if last {
             settings.tolerance
         } else {
-            settings.tolerance.max(1e-6)
+            // Only the last step is the answer; the others just start the next.
+            settings
+                .tolerance
+                .max(solver::newton::INTERMEDIATE_TOLERANCE)
         };
         let r = solver::solve(model, &settings.clone().load_steps(1).tolerance(tolerance));
         merge(&mut total, &r);

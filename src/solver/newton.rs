@@ -28,7 +28,7 @@ const MIN_INCREMENT: f64 = 1e-5;
 /// Residual to which intermediate continuation sub-steps are converged (or the solve's tolerance
 /// if looser): their states only start the next sub-step, and a few digits are enough for that.
 /// Iterating them to round-off cost the gridshell's form finding about a third of its iterations.
-const INTERMEDIATE_TOLERANCE: f64 = 1e-6;
+pub const INTERMEDIATE_TOLERANCE: f64 = 1e-6;
 /// Relative residual below which a full Newton step on a positive definite Hessian may be
 /// accepted for reducing the residual when the Armijo test cannot resolve the energy change.
 const TRUSTED_RESIDUAL: f64 = 1e-4;
