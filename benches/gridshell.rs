@@ -9,8 +9,9 @@ mod common;
 use rodnet::gridshell::footprint::{footprint, HemisphereSpec};
 use rodnet::gridshell::formfind::DEFAULT_START_CAP;
 use rodnet::gridshell::job::run;
+use rodnet::network::assembly::{Assembly, HessianOut, HessianSlots};
 use rodnet::network::build::build;
-use rodnet::network::model::{Assembly, Model};
+use rodnet::network::model::Model;
 use rodnet::solver::linalg::SparseCholesky;
 use rodnet::solver::ordering::nested_dissection;
 
@@ -54,29 +55,35 @@ fn equilibrium() -> (Model, Vec<(usize, usize)>) {
     (m, pairs)
 }
 
-fn assembled(nd: bool) -> (Model, SparseCholesky) {
-    let (mut m, pairs) = equilibrium();
+fn assembled(nd: bool) -> (Model, HessianSlots, SparseCholesky) {
+    let (m, pairs) = equilibrium();
     let order = nd.then(|| nested_dissection(m.n_free, &pairs, &m.unknown_positions()));
     let (mut chol, slots) = SparseCholesky::with_order(m.n_free, &pairs, order.as_deref());
-    m.set_slots(&slots);
+    let hs = m.hessian_slots(&slots);
     let mut g = vec![0.0; m.n_free];
     m.assemble(&mut Assembly {
         grad: &mut g,
         full_grad: None,
-        hess: Some(&mut chol.values),
+        hess: Some(HessianOut {
+            values: &mut chol.values,
+            slots: &hs,
+        }),
     });
-    (m, chol)
+    (m, hs, chol)
 }
 
 #[divan::bench]
 fn hemisphere_assembly(bencher: divan::Bencher) {
-    let (m, mut chol) = assembled(false);
+    let (m, hs, mut chol) = assembled(false);
     let mut g = vec![0.0; m.n_free];
     bencher.bench_local(|| {
         m.assemble(&mut Assembly {
             grad: &mut g,
             full_grad: None,
-            hess: Some(&mut chol.values),
+            hess: Some(HessianOut {
+                values: &mut chol.values,
+                slots: &hs,
+            }),
         })
     });
 }
@@ -94,7 +101,7 @@ fn hemisphere_symbolic(bencher: divan::Bencher, nd: bool) {
 
 #[divan::bench(args = [false, true])]
 fn hemisphere_factorization(bencher: divan::Bencher, nd: bool) {
-    let (_, mut chol) = assembled(nd);
+    let (_, _, mut chol) = assembled(nd);
     let shift = 1e-10 * chol.diagonal_scale();
     bencher.bench_local(|| chol.factor(shift).is_ok());
 }
@@ -102,7 +109,7 @@ fn hemisphere_factorization(bencher: divan::Bencher, nd: bool) {
 /// Assembly, factorization, solve, length projection, one trial energy and the update.
 #[divan::bench]
 fn hemisphere_newton_iteration(bencher: divan::Bencher) {
-    let (m0, mut chol) = assembled(false);
+    let (m0, hs, mut chol) = assembled(false);
     let shift = 1e-10 * chol.diagonal_scale();
-    common::bench_newton_iteration(bencher, &m0, &mut chol, shift);
+    common::bench_newton_iteration(bencher, &m0, &hs, &mut chol, shift);
 }

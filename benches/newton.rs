@@ -10,8 +10,9 @@ mod common;
 
 use std::collections::BTreeMap;
 
+use rodnet::network::assembly::{Assembly, HessianOut, HessianSlots};
 use rodnet::network::build::build;
-use rodnet::network::model::{Assembly, Model};
+use rodnet::network::model::Model;
 use rodnet::scene::types::*;
 use rodnet::solver::linalg::SparseCholesky;
 use rodnet::solver::NewtonSettings;
@@ -93,50 +94,56 @@ fn grid_scene(n: usize, subdivide: usize) -> Scene {
     }
 }
 
-fn grid_model() -> (Model, SparseCholesky) {
+fn grid_model() -> (Model, HessianSlots, SparseCholesky) {
     let mut m = build(&grid_scene(20, 4)).unwrap().model;
     m.set_load(1.0);
     let (chol, slots) = SparseCholesky::new(m.n_free, &m.hessian_pattern());
-    m.set_slots(&slots);
-    (m, chol)
+    let hs = m.hessian_slots(&slots);
+    (m, hs, chol)
 }
 
 #[divan::bench]
 fn grid_assembly(bencher: divan::Bencher) {
-    let (m, mut chol) = grid_model();
+    let (m, hs, mut chol) = grid_model();
     let mut g = vec![0.0; m.n_free];
     bencher.bench_local(|| {
         m.assemble(&mut Assembly {
             grad: &mut g,
             full_grad: None,
-            hess: Some(&mut chol.values),
+            hess: Some(HessianOut {
+                values: &mut chol.values,
+                slots: &hs,
+            }),
         })
     });
 }
 
 #[divan::bench]
 fn grid_symbolic(bencher: divan::Bencher) {
-    let (m, _) = grid_model();
+    let (m, _, _) = grid_model();
     let pairs = m.hessian_pattern();
     bencher.bench_local(|| SparseCholesky::new(m.n_free, &pairs).1.len());
 }
 
 #[divan::bench]
 fn grid_factorization(bencher: divan::Bencher) {
-    let (m, mut chol) = grid_model();
+    let (m, hs, mut chol) = grid_model();
     let mut g = vec![0.0; m.n_free];
     m.assemble(&mut Assembly {
         grad: &mut g,
         full_grad: None,
-        hess: Some(&mut chol.values),
+        hess: Some(HessianOut {
+            values: &mut chol.values,
+            slots: &hs,
+        }),
     });
     bencher.bench_local(|| chol.factor(0.0).is_ok());
 }
 
 #[divan::bench]
 fn grid_newton_iteration(bencher: divan::Bencher) {
-    let (m0, mut chol) = grid_model();
-    common::bench_newton_iteration(bencher, &m0, &mut chol, 0.0);
+    let (m0, hs, mut chol) = grid_model();
+    common::bench_newton_iteration(bencher, &m0, &hs, &mut chol, 0.0);
 }
 
 #[divan::bench(args = [10, 40, 160, 640])]
@@ -175,6 +182,6 @@ fn cantilever_solve(bencher: divan::Bencher, n: usize) {
     let settings = NewtonSettings::default();
     bencher.bench_local(|| {
         let mut net = build(&s).unwrap();
-        rodnet::solver::solve(&mut net.model, &settings).converged
+        rodnet::network::solve(&mut net.model, &settings).converged
     });
 }

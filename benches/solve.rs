@@ -8,7 +8,7 @@
 //!   obstacles and bounds deleted (a different equilibrium: the rod stays straight, the
 //!   cantilever swings freely).
 
-use rodnet::job::{settings_of, solve_scene};
+use rodnet::pipeline::{settings_of, solve_scene};
 use rodnet::scene::types::{Bound, Scene};
 
 fn main() {

@@ -12,8 +12,8 @@ use std::time::Instant;
 use rodnet::gridshell::footprint::{footprint, HemisphereSpec};
 use rodnet::gridshell::formfind::DEFAULT_START_CAP;
 use rodnet::gridshell::job::run;
+use rodnet::network::assembly::{Assembly, HessianOut};
 use rodnet::network::build::build;
-use rodnet::network::model::Assembly;
 use rodnet::solver::linalg::SparseCholesky;
 use rodnet::solver::ordering::nested_dissection;
 
@@ -66,7 +66,7 @@ fn main() {
             let nd = nested_dissection(nf, &pairs, &pts);
             let (mut amd, slots) = SparseCholesky::new(nf, &pairs);
             let (mut ndc, _) = SparseCholesky::with_order(nf, &pairs, Some(&nd));
-            model.set_slots(&slots);
+            let hs = model.hessian_slots(&slots);
             let mut g = vec![0.0; nf];
             let mut asm = vec![];
             for _ in 0..5 {
@@ -74,7 +74,10 @@ fn main() {
                 model.assemble(&mut Assembly {
                     grad: &mut g,
                     full_grad: None,
-                    hess: Some(&mut amd.values),
+                    hess: Some(HessianOut {
+                        values: &mut amd.values,
+                        slots: &hs,
+                    }),
                 });
                 asm.push(t.elapsed().as_secs_f64());
             }

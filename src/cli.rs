@@ -14,7 +14,7 @@ use crate::gridshell::footprint::{self, HemisphereSpec, JointChoice};
 use crate::gridshell::formfind::{FormPath, DEFAULT_START_CAP};
 use crate::gridshell::job as gridshell_job;
 use crate::io::{atomic, csv, obj};
-use crate::job;
+use crate::pipeline as job;
 use crate::scene::types::Section;
 use crate::scene::{self, FieldError, Scene, SceneError};
 
@@ -384,7 +384,7 @@ fn check_outputs(outputs: &[(&str, &Path)], inputs: &[&Path]) -> Result<(), Stri
 fn solve_and_write(label: &str, sc: &Scene, source: &Source, outputs: Outputs, quiet: bool) -> i32 {
     let mut settings = job::settings_of(sc);
     progress::begin(settings.load_steps, show_progress(quiet));
-    settings.progress = Some(progress::hook);
+    settings.progress = Some(std::sync::Arc::new(progress::hook));
     let result = job::solve_scene(sc, &settings);
     let seen = progress::finish();
     let sol = match result {
@@ -428,7 +428,7 @@ fn solve_and_write(label: &str, sc: &Scene, source: &Source, outputs: Outputs, q
         files.push((p, obj::to_obj(r).into_bytes()));
     }
     if let Some(p) = &outputs.csv {
-        files.push((p, csv::to_csv(&sol.network, r).into_bytes()));
+        files.push((p, csv::to_csv(&sol.equilibrium).into_bytes()));
     }
     if let Err((p, e)) = atomic::write_all(&files) {
         return bad(format_args!("cannot write {}: {e}", p.display()));
@@ -584,7 +584,11 @@ fn hemisphere(a: HemisphereArgs) -> i32 {
     }
 
     progress::begin(spec.load_steps, show_progress(a.quiet));
-    let result = gridshell_job::run(&spec, a.start_cap, Some(progress::hook));
+    let result = gridshell_job::run(
+        &spec,
+        a.start_cap,
+        Some(std::sync::Arc::new(progress::hook)),
+    );
     let _ = progress::finish();
     let run = match result {
         Ok(r) => r,

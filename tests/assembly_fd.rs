@@ -5,8 +5,9 @@
 mod common;
 
 use common::*;
+use rodnet::network::assembly::{Assembly, HessianOut};
 use rodnet::network::build::build;
-use rodnet::network::model::{Assembly, Model};
+use rodnet::network::model::Model;
 use rodnet::scene::types::*;
 use rodnet::solver::linalg::SparseCholesky;
 
@@ -32,12 +33,15 @@ fn check_model(mut m: Model, seed: u64) {
     m.displace(&d1, 1.0);
     let pairs = m.hessian_pattern();
     let (mut chol, slots) = SparseCholesky::new(n, &pairs);
-    m.set_slots(&slots);
+    let hs = m.hessian_slots(&slots);
     let mut g = vec![0.0; n];
     m.assemble(&mut Assembly {
         grad: &mut g,
         full_grad: None,
-        hess: Some(&mut chol.values),
+        hess: Some(HessianOut {
+            values: &mut chol.values,
+            slots: &hs,
+        }),
     });
     for trial in 0..3 {
         let v: Vec<f64> = (0..n).map(|_| rng.range(-1.0, 1.0)).collect();

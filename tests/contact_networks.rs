@@ -5,7 +5,7 @@
 use std::process::Command;
 
 use rodnet::analytic::{cantilever_tip_load, heavy_elastica_lifted_end};
-use rodnet::job::{settings_of, solve_scene, Solution};
+use rodnet::pipeline::{settings_of, solve_scene, Solution};
 
 fn run(name: &str) -> Solution {
     let (s, _) =

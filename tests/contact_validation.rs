@@ -10,7 +10,7 @@ use std::f64::consts::PI;
 
 use common::*;
 use rodnet::analytic::{heavy_elastica_lifted_end, heavy_elastica_small_deflection, HeavyElastica};
-use rodnet::job::{settings_of, solve_scene, Solution};
+use rodnet::pipeline::{settings_of, solve_scene, Solution};
 use rodnet::scene::types::*;
 
 const G: f64 = 9.81;

@@ -12,9 +12,9 @@ use rodnet::energy::{
 };
 use rodnet::math::vec::*;
 use rodnet::math::HD;
-use rodnet::network::port::Port;
-use rodnet::network::state::{FrameRef, State};
 use rodnet::rod::frames::EdgeRef;
+use rodnet::variables::Port;
+use rodnet::variables::{FrameRef, State};
 
 const H: f64 = 1e-6;
 const TOL: f64 = 1e-6;
@@ -136,6 +136,7 @@ fn stretch_fd() {
     for k in 0..5 {
         let t = Stretch {
             vars: [0, 1, 2, 3, 4, 5],
+            edge: 0,
             rest_length: rng.range(0.3, 2.0),
             ea: rng.range(1.0, 10.0),
         };

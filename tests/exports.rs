@@ -2,7 +2,7 @@
 //! of the results add up to the global elastic energy and match beam theory.
 
 use rodnet::io::{obj, results::Results};
-use rodnet::{job, scene};
+use rodnet::{pipeline as job, scene};
 
 fn solve(src: &str) -> Results {
     let sc = scene::parse("test.ron", src).expect("scene parses");
@@ -95,7 +95,7 @@ fn rod_energies_add_up_to_the_elastic_energy() {
     );
     let e = &r.energy;
     let elastic = e.stretch + e.bend + e.twist;
-    let parts = |f: fn(&rodnet::io::rod_energy::RodEnergy) -> f64| -> f64 {
+    let parts = |f: fn(&rodnet::network::equilibrium::RodEnergy) -> f64| -> f64 {
         r.rods.iter().map(|rod| f(&rod.energy)).sum()
     };
     for (name, global, sum) in [

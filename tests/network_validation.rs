@@ -5,7 +5,7 @@ mod common;
 
 use common::*;
 use rodnet::analytic;
-use rodnet::job::{settings_of, solve_scene, Solution};
+use rodnet::pipeline::{settings_of, solve_scene, Solution};
 use rodnet::scene::types::*;
 
 fn solve(s: &Scene) -> Solution {
@@ -317,7 +317,7 @@ fn small_ball_grid() {
         // force scale) per free force component, summed over the nodes.
         let total: f64 = sol.results.reactions.iter().map(|r| r.force[2]).sum();
         let m = &sol.network.model;
-        let bound = sol.report.residual * m.force_scale * sol.network.n_nodes as f64;
+        let bound = sol.report.residual * m.force_scale * sol.network.n_nodes() as f64;
         println!(
             "Σ reactions − Σ loads = {:.2e} (bound {bound:.2e})",
             total - 4.0 * p

@@ -1,7 +1,7 @@
 //! The fill-reducing ordering changes the cost of a factorization, never the answer: the grid and
 //! star reference networks solved with AMD and with geometric nested dissection agree.
 
-use rodnet::job::{settings_of, solve_scene};
+use rodnet::pipeline::{settings_of, solve_scene};
 use rodnet::scene::load;
 use rodnet::solver::Ordering;
 

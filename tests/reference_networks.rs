@@ -2,7 +2,7 @@
 //! answers. Bounds are the measured discretization errors at the files' subdivisions (second
 //! order; the convergence itself is tested in network_validation.rs), with 20 % margin.
 
-use rodnet::job::{settings_of, solve_scene, Solution};
+use rodnet::pipeline::{settings_of, solve_scene, Solution};
 
 fn run(name: &str) -> Solution {
     let (s, _) =

@@ -6,12 +6,12 @@ mod common;
 
 use common::*;
 use rodnet::analytic;
-use rodnet::job::{settings_of, solve_scene};
+use rodnet::network::assembly::Assembly;
 use rodnet::network::build::build;
-use rodnet::network::model::Assembly;
+use rodnet::pipeline::{settings_of, solve_scene};
 use rodnet::scene::types::*;
 
-fn tip(s: &Scene) -> ([f64; 3], rodnet::job::Solution) {
+fn tip(s: &Scene) -> ([f64; 3], rodnet::pipeline::Solution) {
     let sol = solve_scene(s, &settings_of(s)).unwrap();
     assert!(sol.report.converged, "{:?}", sol.report.message);
     let p = *sol.results.rods[0].points.last().unwrap();
@@ -284,7 +284,7 @@ fn rigid_motion_invariance() {
         full_grad: Some(&mut full),
         hess: None,
     });
-    let n_nodes = net.n_nodes;
+    let n_nodes = m.layout.n_nodes();
     let a = rng.vec3(1.0);
     let b = rng.vec3(1.0);
     let q = m.state.q.clone();
@@ -306,7 +306,7 @@ fn rigid_motion_invariance() {
         dq[3 * n_nodes + e] = (a[0] * d[0] + a[1] * d[1] + a[2] * d[2]) / l;
     }
     for f in 0..m.state.frames.len() {
-        let v = m.frame_var(f).unwrap();
+        let v = m.layout.frame(f)[0];
         dq[v..v + 3].copy_from_slice(&a);
     }
     let dot: f64 = full.iter().zip(&dq).map(|(x, y)| x * y).sum();
@@ -331,7 +331,7 @@ fn rigid_motion_invariance() {
         f.rotation = rodnet::math::vec::frame_rotate(w, &f.rotation);
     }
     let vars: Vec<usize> = (0..m.state.frames.len())
-        .map(|f| m.frame_var(f).unwrap())
+        .map(|f| m.layout.frame(f)[0])
         .collect();
     for v in vars {
         let x = rot([m.state.q[v], m.state.q[v + 1], m.state.q[v + 2]]);

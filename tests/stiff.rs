@@ -7,7 +7,7 @@ use std::path::Path;
 use std::time::Instant;
 
 use rodnet::analytic;
-use rodnet::job::{settings_of, solve_scene, Solution};
+use rodnet::pipeline::{settings_of, solve_scene, Solution};
 use rodnet::scene::types::*;
 
 fn load(name: &str) -> Scene {
@@ -415,7 +415,7 @@ fn nitinol_l_frame_on_soft_joint() {
         let fz = re.force[2] + p;
         let mx = re.moment[0] + p * y_tip;
         let model = &sol.network.model;
-        let bound = sol.report.residual * model.force_scale * sol.network.n_nodes as f64;
+        let bound = sol.report.residual * model.force_scale * sol.network.n_nodes() as f64;
         println!(
             "N = {n}: tip {:.9e} m ({:.2e} rel.), {} iterations, residual {:.1e} (floor {:.1e}), \
              reaction imbalance {fz:.1e} N, {mx:.1e} N·m, {secs:.3} s",
@@ -874,7 +874,7 @@ fn big_gridshell() {
     let net = rodnet::network::build::build(&footprint(&spec).scene).unwrap();
     println!(
         "n = {n}, subdivide {k}: {} nodes, {} free unknowns, peak RSS {:.0} MiB after building",
-        net.n_nodes,
+        net.n_nodes(),
         net.model.n_free,
         peak_rss_mib()
     );
@@ -887,7 +887,7 @@ fn big_gridshell() {
     let r = rodnet::gridshell::job::run(
         &spec,
         rodnet::gridshell::formfind::DEFAULT_START_CAP,
-        Some(progress),
+        Some(std::sync::Arc::new(progress)),
     )
     .unwrap();
     let secs = t.elapsed().as_secs_f64();

@@ -1,15 +1,18 @@
 //! Shared by the benchmarks: one Newton iteration measured the same way everywhere.
 
-use rodnet::network::model::{Assembly, Model};
+use rodnet::network::assembly::{Assembly, HessianOut, HessianSlots};
+use rodnet::network::model::Model;
+use rodnet::network::NetworkProblem;
 use rodnet::solver::linalg::SparseCholesky;
 use rodnet::solver::NewtonProblem;
 
 /// Benchmarks one full Newton iteration from a fresh copy of `m0` each time: assembly,
 /// factorization of H + shift·I, solve, length projection, one trial energy and the update.
-/// `chol` must be built on `m0`'s Hessian pattern (slots set).
+/// `chol` must be built on `m0`'s Hessian pattern, `hs` its slot map.
 pub fn bench_newton_iteration(
     bencher: divan::Bencher,
     m0: &Model,
+    hs: &HessianSlots,
     chol: &mut SparseCholesky,
     shift: f64,
 ) {
@@ -21,16 +24,20 @@ pub fn bench_newton_iteration(
             let e0 = m.assemble(&mut Assembly {
                 grad: &mut g,
                 full_grad: None,
-                hess: Some(&mut chol.values),
+                hess: Some(HessianOut {
+                    values: &mut chol.values,
+                    slots: hs,
+                }),
             });
             chol.factor(shift).expect("positive definite");
             for i in 0..n {
                 d[i] = -g[i];
             }
             chol.solve(&mut d);
-            m.step_correction(&d, &mut c);
-            let e1 = m.trial_energy(&d, 1.0);
-            m.accept(&d, 1.0);
+            let mut p = NetworkProblem::new(&mut m);
+            p.step_correction(&d, &mut c);
+            let e1 = p.trial_energy(&d, 1.0);
+            p.accept(&d, 1.0);
             (e0, e1)
         });
 }

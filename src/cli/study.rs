@@ -131,7 +131,7 @@ pub fn run(a: &ConvergenceArgs) -> i32 {
     let mut levels = Vec::with_capacity(plan.levels());
     for i in 0..plan.levels() {
         progress::begin(plan.load_steps(), show);
-        let level = plan.solve(i, Some(progress::hook));
+        let level = plan.solve(i, Some(std::sync::Arc::new(progress::hook)));
         let _ = progress::finish();
         if show {
             eprintln!(

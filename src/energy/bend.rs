@@ -11,8 +11,8 @@ use super::{diff3, same, Category, Reduced, Term};
 use crate::math::dual::{compose, separable_dot};
 use crate::math::vec::dot;
 use crate::math::{Real, HD};
-use crate::network::state::State;
 use crate::rod::frames::{bend_quadratic, oriented_reference_frame, FrameDots, RefFrame};
+use crate::variables::State;
 
 #[derive(Debug, Clone)]
 pub struct Bend {
@@ -88,6 +88,9 @@ impl Term<11> for Bend {
     const CATEGORY: Category = Category::Bend;
     fn vars(&self) -> &[usize; 11] {
         &self.vars
+    }
+    fn edge(&self) -> Option<usize> {
+        Some(self.edges[0])
     }
     fn eval<T: Real>(&self, st: &State, x: &[T; 11]) -> T {
         self.eval_reduced(st, &super::reduce(&STENCIL_MAP, x))

@@ -6,11 +6,12 @@
 //! curvature over [0, |e|/2] is the angle between the vertex tangent and the chord, so the clamp
 //! or joint acts exactly at the vertex and the discretization stays second order.
 
+use super::half_stencil::{half_stencil, HALF_STENCIL_MAP};
 use super::{reduced_term, Category, Reduced, Term};
 use crate::math::Real;
-use crate::network::port::{half_stencil, Port, HALF_STENCIL_MAP};
-use crate::network::state::State;
 use crate::rod::frames::{bend_quadratic, curvature_binormal, material_curvature};
+use crate::variables::Port;
+use crate::variables::State;
 
 #[derive(Debug, Clone)]
 pub struct FrameBend {
@@ -51,6 +52,9 @@ impl Term<11> for FrameBend {
     const CATEGORY: Category = Category::Bend;
     fn vars(&self) -> &[usize; 11] {
         &self.vars
+    }
+    fn edge(&self) -> Option<usize> {
+        Some(self.edge)
     }
     reduced_term!(11, 8);
 }

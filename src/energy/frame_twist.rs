@@ -4,12 +4,13 @@
 //! The reference part (to the edge's reference director u) is unwrapped by 2π from its last
 //! accepted value; the edge's own angle enters linearly.
 
+use super::half_stencil::{half_stencil, HALF_STENCIL_MAP};
 use super::{reduced_term, Category, Reduced, Term};
 use crate::math::vec::{signed_angle, transport};
 use crate::math::Real;
-use crate::network::port::{half_stencil, Port, HALF_STENCIL_MAP};
-use crate::network::state::State;
 use crate::rod::frames::unwrap_angle;
+use crate::variables::Port;
+use crate::variables::State;
 
 #[derive(Debug, Clone)]
 pub struct FrameTwist {
@@ -54,6 +55,13 @@ impl Term<11> for FrameTwist {
     const CATEGORY: Category = Category::Twist;
     fn vars(&self) -> &[usize; 11] {
         &self.vars
+    }
+    fn edge(&self) -> Option<usize> {
+        Some(self.edge)
+    }
+    fn remembered(&self, st: &State) -> Option<(usize, f64)> {
+        let y = Self::reduced(&self.gather(&st.q));
+        Some((self.slot, self.reference_twist::<f64>(st, &y)))
     }
     reduced_term!(11, 8);
 }

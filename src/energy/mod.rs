@@ -5,15 +5,17 @@
 pub mod bend;
 pub mod frame_bend;
 pub mod frame_twist;
+pub mod half_stencil;
 pub mod joint_rotation;
 pub mod joint_translation;
 pub mod point_load;
+pub mod registry;
 pub mod stretch;
 pub mod torque;
 pub mod twist;
 
 use crate::math::{Real, HD};
-use crate::network::state::State;
+use crate::variables::State;
 
 /// Where a term's energy is reported in the results.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -44,6 +46,17 @@ pub trait Term<const N: usize>: Sync + Send {
 
     fn energy(&self, st: &State) -> f64 {
         self.eval::<f64>(st, &self.gather(&st.q))
+    }
+
+    /// The global edge whose rod this term's energy belongs to (per-rod energies), if any.
+    fn edge(&self) -> Option<usize> {
+        None
+    }
+
+    /// Reference data to keep from an accepted iterate: `(slot, value)` to store in
+    /// [`State::twist_prev`] (twist terms unwrap their reference twist against it).
+    fn remembered(&self, _st: &State) -> Option<(usize, f64)> {
+        None
     }
 }
 

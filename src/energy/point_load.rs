@@ -3,7 +3,7 @@
 
 use super::{Category, Term};
 use crate::math::Real;
-use crate::network::state::State;
+use crate::variables::State;
 
 #[derive(Debug, Clone)]
 pub struct PointLoad {

@@ -3,12 +3,14 @@
 use super::{diff3, reduced_term, Category, Reduced, Term};
 use crate::math::vec::norm;
 use crate::math::Real;
-use crate::network::state::State;
+use crate::variables::State;
 
 #[derive(Debug, Clone)]
 pub struct Stretch {
     /// (x_a, x_b).
     pub vars: [usize; 6],
+    /// The global edge it stretches.
+    pub edge: usize,
     pub rest_length: f64,
     pub ea: f64,
 }
@@ -25,6 +27,9 @@ impl Term<6> for Stretch {
     const CATEGORY: Category = Category::Stretch;
     fn vars(&self) -> &[usize; 6] {
         &self.vars
+    }
+    fn edge(&self) -> Option<usize> {
+        Some(self.edge)
     }
     reduced_term!(6, 3);
 }

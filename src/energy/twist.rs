@@ -10,8 +10,8 @@ use super::{Category, Reduced, Term};
 use crate::math::dual::{compose, separable_dot};
 use crate::math::vec::dot;
 use crate::math::{Real, HD};
-use crate::network::state::State;
 use crate::rod::frames::{oriented_reference_frame, unwrap_angle, FrameDots};
+use crate::variables::State;
 
 #[derive(Debug, Clone)]
 pub struct Twist {
@@ -70,6 +70,13 @@ impl Term<11> for Twist {
     const CATEGORY: Category = Category::Twist;
     fn vars(&self) -> &[usize; 11] {
         &self.vars
+    }
+    fn edge(&self) -> Option<usize> {
+        Some(self.edges[0])
+    }
+    fn remembered(&self, st: &State) -> Option<(usize, f64)> {
+        let y = Self::reduced(&self.gather(&st.q));
+        Some((self.slot, self.reference_twist::<f64>(st, &y)))
     }
     fn eval<T: Real>(&self, st: &State, x: &[T; 11]) -> T {
         self.eval_reduced(st, &Self::reduced(x))

@@ -43,9 +43,9 @@
 use std::time::Instant;
 
 use crate::gridshell::chebyshev::HemisphereNet;
-use crate::math::vec::{cross, dot, norm, normalize, scalef};
-use crate::network::build::Network;
+use crate::math::vec::{add, cross, dot, norm, normalize, scalef, sub};
 use crate::network::model::Model;
+use crate::network::{Network, NetworkProblem};
 use crate::solver::{self, NewtonReport, NewtonSettings};
 
 /// Radius of the starting cap over R. Larger radii start flatter and need more iterations
@@ -83,9 +83,9 @@ pub fn form_find(
         cap_path(network, settings, radius, start_cap)
     } else {
         if start_cap > 0.0 {
-            onto_cap(network, start_cap * radius);
+            onto_cap(&mut network.model, start_cap * radius);
         }
-        solver::solve(&mut network.model, settings)
+        crate::network::solve(&mut network.model, settings)
     };
     FormFinding {
         report,
@@ -95,9 +95,9 @@ pub fn form_find(
 
 /// Node positions on the Chebyshev net of the sphere of radius `rho` (resting on z = 0 at the
 /// lowest node) and the sphere's unit normals there.
-fn on_cap(rho: f64, flat: &[f64]) -> (CapNodes, CapNodes) {
+fn on_cap(rho: f64, flat: &[[f64; 3]]) -> (CapNodes, CapNodes) {
     let cap = HemisphereNet::new(rho, 1);
-    let mut pos: Vec<[f64; 3]> = flat.chunks(3).map(|x| cap.point(x[0], x[1])).collect();
+    let mut pos: Vec<[f64; 3]> = flat.iter().map(|x| cap.point(x[0], x[1])).collect();
     let normals = pos.iter().map(|&p| normalize(p)).collect();
     let lowest = pos.iter().map(|p| p[2]).fold(f64::INFINITY, f64::min);
     for p in &mut pos {
@@ -118,10 +118,10 @@ fn cap_path(
     radius: f64,
     start_cap: f64,
 ) -> NewtonReport {
-    let model = &mut network.model;
-    let nodes = network.n_nodes;
-    let flat = model.state.q[..3 * nodes].to_vec();
-    let ends: Vec<f64> = model.prescribed.iter().map(|p| p.end).collect();
+    let mut problem = NetworkProblem::new(&mut network.model);
+    let layout = problem.model.layout;
+    let flat: CapNodes = layout.node_positions(&problem.model.state.q).collect();
+    let ends: Vec<f64> = problem.model.prescribed.iter().map(|p| p.end).collect();
     let steps = if start_cap > 1.0 {
         settings.load_steps.max(1)
     } else {
@@ -152,18 +152,19 @@ fn cap_path(
             1.0 / (k0 + (k1 - k0) * s_next)
         };
         let (pos, normals) = on_cap(rho, &flat);
+        let model = &mut *problem.model;
         let saved = model.state.clone();
+        let q = &mut model.state.q;
         match (&done, carry) {
             (Some((_, old, _)), true) => {
-                for n in 0..nodes {
-                    for c in 0..3 {
-                        model.state.q[3 * n + c] += pos[n][c] - old[n][c];
-                    }
+                for n in 0..layout.n_nodes() {
+                    let p = layout.position(q, n);
+                    layout.set_position(q, n, add(p, sub(pos[n], old[n])));
                 }
             }
             _ => {
                 for (n, p) in pos.iter().enumerate() {
-                    model.state.q[3 * n..3 * n + 3].copy_from_slice(p);
+                    layout.set_position(q, n, *p);
                 }
             }
         }
@@ -186,7 +187,7 @@ fn cap_path(
                 .tolerance
                 .max(solver::newton::INTERMEDIATE_TOLERANCE)
         };
-        let r = solver::solve(model, &settings.clone().load_steps(1).tolerance(tolerance));
+        let r = problem.solve(&settings.clone().load_steps(1).tolerance(tolerance));
         merge(&mut total, &r);
         if r.converged {
             pending.pop();
@@ -199,7 +200,7 @@ fn cap_path(
             halvings += 1;
             carry = true;
             total.retries += 1;
-            model.state = saved;
+            problem.model.state = saved;
             pending.push(0.5 * (s_prev + s_next));
             continue;
         }
@@ -210,7 +211,7 @@ fn cap_path(
         total.converged = false;
         break;
     }
-    for (p, &end) in model.prescribed.iter_mut().zip(&ends) {
+    for (p, &end) in problem.model.prescribed.iter_mut().zip(&ends) {
         p.end = end;
     }
     total
@@ -218,12 +219,12 @@ fn cap_path(
 
 /// The straight path's start: the footprint bent onto the cap net of radius `rho`, its ends
 /// then moved by the solver's continuation from there to the scene's targets.
-fn onto_cap(network: &mut Network, rho: f64) {
-    let model = &mut network.model;
-    let nodes = network.n_nodes;
-    let (pos, normals) = on_cap(rho, &model.state.q[..3 * nodes]);
+fn onto_cap(model: &mut Model, rho: f64) {
+    let layout = model.layout;
+    let flat: CapNodes = layout.node_positions(&model.state.q).collect();
+    let (pos, normals) = on_cap(rho, &flat);
     for (n, p) in pos.iter().enumerate() {
-        model.state.q[3 * n..3 * n + 3].copy_from_slice(p);
+        layout.set_position(&mut model.state.q, n, *p);
     }
     turn_frames(model, &|_| [0.0, 0.0, 1.0], &normals);
     for p in &mut model.prescribed {
@@ -239,7 +240,10 @@ fn turn_frames(model: &mut Model, from: &dyn Fn(usize) -> [f64; 3], to: &[[f64; 
     for fb in &model.terms.frame_bend {
         let f = fb.port.frame;
         if !std::mem::replace(&mut turned[f], true) {
-            let node = fb.vars[0] / 3;
+            let node = model
+                .layout
+                .node_of(fb.vars[0])
+                .expect("a port's vertex node");
             model.state.frames[f].commit(rotation_between(from(node), to[node]));
         }
     }

@@ -9,10 +9,11 @@ use crate::gridshell::footprint::{footprint, Footprint, HemisphereSpec};
 use crate::gridshell::formfind::{form_find, FormFinding};
 use crate::gridshell::report::{shape_metrics, ShapeMetrics};
 use crate::io::results::Results;
-use crate::job::settings_of;
-use crate::network::build::{build, Network};
+use crate::network::Network;
+use crate::pipeline::{self, settings_of};
 use crate::scene::types::Section;
 use crate::scene::FieldError;
+use crate::solver::Progress;
 
 pub struct HemisphereRun {
     pub spec: HemisphereSpec,
@@ -31,29 +32,41 @@ pub struct HemisphereRun {
 pub fn run(
     spec: &HemisphereSpec,
     start_cap: f64,
-    progress: Option<fn(usize, usize, f64, f64)>,
+    progress: Option<Progress>,
 ) -> Result<HemisphereRun, FieldError> {
     let t0 = Instant::now();
     let fp = footprint(spec);
     crate::scene::validate::validate(&fp.scene)?;
-    let mut network = build(&fp.scene)?;
-    let generation_seconds = t0.elapsed().as_secs_f64();
     let mut settings = settings_of(&fp.scene);
     settings.progress = progress;
-    let form = form_find(&mut network, &settings, spec.radius, start_cap, spec.path);
-    let mut results = Results::collect(&network, &form.report, fp.scene.target.as_ref());
-    let metrics = shape_metrics(&network, &fp.net, &fp.crossings);
-    if let Some(t) = results.target.as_mut() {
-        t.max_net_distance = Some(metrics.max_net_distance);
-        t.rms_net_distance = Some(metrics.rms_net_distance);
-    }
+    let mut form = None;
+    let mut metrics = None;
+    let mut generation_seconds = 0.0;
+    let solution = pipeline::run(
+        &fp.scene,
+        &settings,
+        |network, settings| {
+            generation_seconds = t0.elapsed().as_secs_f64();
+            let f = form_find(network, settings, spec.radius, start_cap, spec.path);
+            let report = f.report.clone();
+            form = Some(f);
+            report
+        },
+        |network, eq| {
+            let m = shape_metrics(network, &fp.net, &fp.crossings);
+            if let Some(t) = eq.target.as_mut() {
+                t.net_distance = Some((m.max_net_distance, m.rms_net_distance));
+            }
+            metrics = Some(m);
+        },
+    )?;
     Ok(HemisphereRun {
         spec: spec.clone(),
         footprint: fp,
-        network,
-        form,
-        results,
-        metrics,
+        network: solution.network,
+        form: form.expect("the pipeline solves"),
+        results: solution.results,
+        metrics: metrics.expect("the pipeline measures"),
         start_cap,
         generation_seconds,
     })
@@ -105,7 +118,7 @@ impl HemisphereRun {
             poisson_ratio: s.poisson_ratio,
             start_cap: self.start_cap,
             crossings: self.network.joints.len(),
-            nodes: self.network.n_nodes,
+            nodes: self.network.n_nodes(),
             generation_seconds: self.generation_seconds,
             form_finding_seconds: self.form.seconds,
             substeps: self.form.report.substeps,
@@ -152,7 +165,7 @@ impl HemisphereRun {
             "  {} crossings, {} rods, {} nodes, {} free unknowns",
             self.network.joints.len(),
             self.network.rods.len(),
-            self.network.n_nodes,
+            self.network.n_nodes(),
             self.network.model.n_free
         );
         let status = if !r.converged {

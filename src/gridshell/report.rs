@@ -5,7 +5,7 @@ use serde::Serialize;
 use crate::gridshell::chebyshev::HemisphereNet;
 use crate::gridshell::footprint::CrossingJoint;
 use crate::math::vec::{norm, sub};
-use crate::network::build::Network;
+use crate::network::Network;
 
 /// Shape errors of an equilibrium, every length relative to R.
 #[derive(Debug, Clone, Copy, PartialEq, Serialize)]
@@ -24,24 +24,20 @@ pub struct ShapeMetrics {
     pub rms_net_distance: f64,
 }
 
-fn node(q: &[f64], n: usize) -> [f64; 3] {
-    [q[3 * n], q[3 * n + 1], q[3 * n + 2]]
-}
-
 /// Metrics of the network's current state; `crossings[k]` is the crossing of joint k.
 pub fn shape_metrics(
     network: &Network,
     net: &HemisphereNet,
     crossings: &[CrossingJoint],
 ) -> ShapeMetrics {
-    let q = &network.model.state.q;
+    let m = &network.model;
     let r = net.radius;
     let count = network.joints.len().max(1) as f64;
     let (mut max_rad, mut sum2_rad, mut sum_rad) = (0.0f64, 0.0, 0.0);
     let (mut max_net, mut sum2_net) = (0.0f64, 0.0);
     let mut lowest = f64::INFINITY;
     for (j, c) in network.joints.iter().zip(crossings) {
-        let x = node(q, j.node);
+        let x = m.position(j.node);
         lowest = lowest.min(x[2] / r);
         let d = (norm(x) - r) / r;
         max_rad = max_rad.max(d.abs());
@@ -51,8 +47,8 @@ pub fn shape_metrics(
         max_net = max_net.max(e);
         sum2_net += e * e;
     }
-    let apex = (0..network.n_nodes)
-        .map(|n| q[3 * n + 2])
+    let apex = (0..network.n_nodes())
+        .map(|n| m.position(n)[2])
         .fold(f64::NEG_INFINITY, f64::max)
         / r;
     ShapeMetrics {

@@ -3,13 +3,12 @@
 
 use std::fmt::Write;
 
-use crate::io::results::Results;
-use crate::io::stress::all_vertex_bending;
-use crate::network::build::Network;
+use crate::network::equilibrium::Equilibrium;
 
-pub fn to_csv(net: &Network, r: &Results) -> String {
+pub fn to_csv(eq: &Equilibrium) -> String {
     let mut s = String::from("rod,index,x,y,z,twist,curvature,bending_strain,bending_stress\n");
-    for (bend, rod) in all_vertex_bending(net).iter().zip(&r.rods) {
+    for rod in &eq.rods {
+        let bend = &rod.bending;
         for (k, p) in rod.points.iter().enumerate() {
             let tw = rod
                 .twist
@@ -17,7 +16,7 @@ pub fn to_csv(net: &Network, r: &Results) -> String {
                 .or(rod.twist.last())
                 .copied()
                 .unwrap_or(0.0);
-            let (kappa, strain, stress) = bend[k];
+            let b = bend[k];
             let _ = writeln!(
                 s,
                 "{},{k},{:.12e},{:.12e},{:.12e},{:.12e},{:.12e},{:.12e},{:.12e}",
@@ -26,9 +25,9 @@ pub fn to_csv(net: &Network, r: &Results) -> String {
                 p[1],
                 p[2],
                 tw,
-                kappa,
-                strain,
-                stress
+                b.curvature,
+                b.strain,
+                b.stress
             );
         }
     }

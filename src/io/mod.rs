@@ -4,7 +4,4 @@ pub mod csv;
 pub mod obj;
 pub mod obj_import;
 pub mod plot;
-pub mod reference;
 pub mod results;
-pub mod rod_energy;
-pub mod stress;

@@ -1,17 +1,16 @@
-//! Results of a solve, in the shape of the contract's results JSON.
+//! The results JSON of the contract: one schema, written and read back through serde, filled
+//! from an [`Equilibrium`] and the solve's report (formatting only).
 
-use serde::Serialize;
+use serde::{Deserialize, Serialize};
 
-use crate::io::reference::ReferenceJson;
-use crate::io::rod_energy::{self, RodEnergy};
-use crate::math::vec::{norm, scalef, sub};
-use crate::network::build::Network;
-use crate::network::contact::{Contact, Source};
-use crate::network::model::{Assembly, EnergyParts, FIXED};
-use crate::scene::types::Target;
-use crate::solver::{ConstraintReport, NewtonReport};
+use crate::network::contact::Source;
+use crate::network::equilibrium::{
+    ConstraintForces, Equilibrium, ReferenceCheck, RodEnergy, TargetCheck,
+};
+use crate::network::model::EnergyParts;
+use crate::solver::NewtonReport;
 
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct EnergyJson {
     pub total: f64,
     pub stretch: f64,
@@ -34,7 +33,7 @@ impl From<EnergyParts> for EnergyJson {
     }
 }
 
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct RodJson {
     pub name: String,
     /// Every node after subdivision, m.
@@ -51,13 +50,13 @@ pub struct RodJson {
     pub length: f64,
 }
 
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct JointJson {
     pub name: String,
     pub position: [f64; 3],
 }
 
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct ReactionJson {
     pub rod: String,
     pub vertex: usize,
@@ -67,7 +66,7 @@ pub struct ReactionJson {
     pub moment: [f64; 3],
 }
 
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct TargetJson {
     pub shape: String,
     pub max_abs_radial_deviation: f64,
@@ -80,7 +79,7 @@ pub struct TargetJson {
     pub rms_net_distance: Option<f64>,
 }
 
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct SolverJson {
     pub factorizations: usize,
     pub regularized_iterations: usize,
@@ -93,7 +92,7 @@ pub struct SolverJson {
 }
 
 /// The force one active constraint (obstacle contact or coordinate bound) exerts on a node.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct ContactJson {
     pub rod: String,
     /// Index of the node in the rod's `points`.
@@ -110,7 +109,7 @@ pub struct ContactJson {
 
 /// First-order optimality (KKT) of the constrained equilibrium, with the last step QP's
 /// multipliers z and the constraints c(x) ≥ 0 at the final state.
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct KktJson {
     /// Largest constraint violation max(0, −c), m.
     pub primal_feasibility: f64,
@@ -138,7 +137,7 @@ pub struct KktJson {
     pub qp_seconds: f64,
 }
 
-#[derive(Debug, Clone, Serialize)]
+#[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct Results {
     pub converged: bool,
     pub iterations: usize,
@@ -151,7 +150,7 @@ pub struct Results {
     pub reactions: Vec<ReactionJson>,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub target: Option<TargetJson>,
-    /// Scenes with a `reference` only (filled in by [`crate::job::solve_scene`]).
+    /// Scenes with a `reference` only.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub reference: Option<ReferenceJson>,
     pub solver: SolverJson,
@@ -162,84 +161,84 @@ pub struct Results {
     pub kkt: Option<KktJson>,
 }
 
-fn node_pos(q: &[f64], n: usize) -> [f64; 3] {
-    [q[3 * n], q[3 * n + 1], q[3 * n + 2]]
+/// The `reference` block of the results JSON.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct ReferenceJson {
+    pub rod: String,
+    pub vertex: usize,
+    /// The scene's reference position, m.
+    pub position: [f64; 3],
+    /// The vertex's computed position, m.
+    pub computed: [f64; 3],
+    /// |computed − position| / |position − rest|: the error of the vertex's displacement
+    /// relative to the reference displacement.
+    pub error: f64,
+}
+
+impl From<&ReferenceCheck> for ReferenceJson {
+    fn from(r: &ReferenceCheck) -> Self {
+        ReferenceJson {
+            rod: r.rod.clone(),
+            vertex: r.vertex,
+            position: r.position,
+            computed: r.computed,
+            error: r.error,
+        }
+    }
+}
+
+impl From<&TargetCheck> for TargetJson {
+    fn from(t: &TargetCheck) -> Self {
+        TargetJson {
+            shape: t.shape.into(),
+            max_abs_radial_deviation: t.max_abs_radial_deviation,
+            rms_radial_deviation: t.rms_radial_deviation,
+            apex_height: t.apex_height,
+            max_net_distance: t.net_distance.map(|d| d.0),
+            rms_net_distance: t.net_distance.map(|d| d.1),
+        }
+    }
 }
 
 impl Results {
-    pub fn collect(net: &Network, report: &NewtonReport, target: Option<&Target>) -> Results {
-        let m = &net.model;
-        let q = &m.state.q;
-        let mut grad = vec![0.0; m.n_free];
-        let mut full = vec![0.0; q.len()];
-        m.assemble(&mut Assembly {
-            grad: &mut grad,
-            full_grad: Some(&mut full),
-            hess: None,
-        });
-        let energies = rod_energy::per_rod(net);
-        let bending = crate::io::stress::all_vertex_bending(net);
-        let rods = net
+    pub fn new(eq: &Equilibrium, report: &NewtonReport) -> Results {
+        let rods = eq
             .rods
             .iter()
-            .zip(energies)
-            .zip(bending)
-            .map(|((r, energy), bend)| {
-                let points: Vec<[f64; 3]> = r.nodes.iter().map(|&n| node_pos(q, n)).collect();
-                let twist = r.edges.iter().map(|&e| q[3 * net.n_nodes + e]).collect();
-                let length = r
-                    .edges
-                    .iter()
-                    .map(|&e| {
-                        let [a, b] = m.edge_nodes[e];
-                        norm(sub(node_pos(q, b), node_pos(q, a)))
-                    })
-                    .sum();
-                let bending_stress: Vec<f64> = bend.iter().map(|b| b.2).collect();
+            .map(|r| {
+                let bending_stress: Vec<f64> = r.bending.iter().map(|b| b.stress).collect();
                 RodJson {
                     name: r.name.clone(),
-                    points,
-                    twist,
+                    points: r.points.clone(),
+                    twist: r.twist.clone(),
                     max_bending_stress: bending_stress.iter().copied().fold(0.0, f64::max),
                     bending_stress,
-                    energy,
-                    length,
+                    energy: r.energy,
+                    length: r.length,
                 }
             })
             .collect();
-        let joints = net
+        let joints = eq
             .joints
             .iter()
-            .map(|j| JointJson {
-                name: j.name.clone(),
-                position: node_pos(q, j.node),
+            .map(|(name, position)| JointJson {
+                name: name.clone(),
+                position: *position,
             })
             .collect();
-        let reactions = net
-            .supports
+        let reactions = eq
+            .reactions
             .iter()
-            .map(|s| {
-                let n = s.node;
-                let force = [full[3 * n], full[3 * n + 1], full[3 * n + 2]];
-                let moment = match s.frame.and_then(|f| m.frame_var(f)) {
-                    Some(v) => [full[v], full[v + 1], full[v + 2]],
-                    None => [0.0; 3],
-                };
-                ReactionJson {
-                    rod: s.rod.clone(),
-                    vertex: s.vertex,
-                    force,
-                    moment,
-                }
+            .map(|(rod, vertex, r)| ReactionJson {
+                rod: rod.clone(),
+                vertex: *vertex,
+                force: r.force,
+                moment: r.moment,
             })
             .collect();
-        let target = target.map(|t| sphere_metrics(net, t));
-        let (contacts, kkt) = match &m.contact {
+        let (contacts, kkt) = match &eq.constraints {
             Some(c) => {
-                // A scene whose constrained nodes are all supported has no rows and no QP.
-                let none = ConstraintReport::default();
-                let cr = report.constraints.as_ref().unwrap_or(&none);
-                let (contacts, kkt) = constraint_results(net, c, cr, &grad, report.tolerance);
+                let (contacts, kkt) = constraint_json(c);
                 (Some(contacts), Some(kkt))
             }
             None => (None, None),
@@ -250,19 +249,19 @@ impl Results {
             load_steps: report.load_steps,
             residual: report.residual,
             seconds: report.seconds,
-            energy: m.energy_parts().into(),
+            energy: eq.energy.into(),
             rods,
             joints,
             reactions,
-            target,
-            reference: None,
+            target: eq.target.as_ref().map(TargetJson::from),
+            reference: eq.reference.as_ref().map(ReferenceJson::from),
             solver: SolverJson {
                 factorizations: report.factorizations,
                 regularized_iterations: report.regularized_iterations,
                 saddle_escapes: report.saddle_escapes,
                 stable: report.stable,
                 factor_seconds: report.factor_seconds,
-                free_unknowns: m.n_free,
+                free_unknowns: eq.free_unknowns,
                 step_iterations: report.step_iterations.clone(),
                 message: report.message.clone(),
             },
@@ -321,63 +320,36 @@ impl Results {
     }
 }
 
-/// Active constraint forces and the KKT measures at the final state.
-fn constraint_results(
-    net: &Network,
-    contact: &Contact,
-    cr: &ConstraintReport,
-    grad: &[f64],
-    tolerance: f64,
-) -> (Vec<ContactJson>, KktJson) {
-    let m = &net.model;
-    let q = &m.state.q;
-    let z = &cr.multipliers;
-    let mut owner = vec![None; net.n_nodes];
-    for (r, rod) in net.rods.iter().enumerate() {
-        for (k, &n) in rod.nodes.iter().enumerate() {
-            owner[n].get_or_insert((r, k));
-        }
-    }
-    let (f, l) = (m.force_scale, m.length_scale);
-    let mut stationarity = grad.to_vec();
-    let mut contacts = Vec::new();
-    let (mut violation, mut compl, mut zmin): (f64, f64, f64) = (0.0, 0.0, f64::INFINITY);
-    for (j, row) in contact.rows.iter().enumerate() {
-        let (c, g) = row.at(contact, q);
-        for k in 0..3 {
-            let v = m.free[3 * row.node + k];
-            if v != FIXED {
-                stationarity[v as usize] -= z[j] * g[k];
-            }
-        }
-        violation = violation.max(-c);
-        compl = compl.max((z[j] * c).abs());
-        zmin = zmin.min(z[j]);
-        if z[j] > tolerance * f {
-            let (r, k) = owner[row.node].expect("constraint on a rod node");
-            let (obstacle, bound) = match row.source {
+fn constraint_json(c: &ConstraintForces) -> (Vec<ContactJson>, KktJson) {
+    let contacts = c
+        .contacts
+        .iter()
+        .map(|f| {
+            let (obstacle, bound) = match f.source {
                 Source::Obstacle(i) => (Some(i), None),
                 Source::Bound(i) => (None, Some(i)),
             };
-            contacts.push(ContactJson {
-                rod: net.rods[r].name.clone(),
-                node: k,
+            ContactJson {
+                rod: f.rod.clone(),
+                node: f.node,
                 obstacle,
                 bound,
-                force: scalef(g, z[j]),
-                gap: c,
-            });
-        }
-    }
+                force: f.force,
+                gap: f.gap,
+            }
+        })
+        .collect();
+    let k = &c.kkt;
+    let cr = &k.report;
     let kkt = KktJson {
-        primal_feasibility: violation,
-        primal_feasibility_relative: violation / l,
-        complementarity: compl,
-        complementarity_relative: compl / (f * l),
-        min_multiplier: if z.is_empty() { 0.0 } else { zmin },
-        stationarity: m.relative_residual(&stationarity),
-        active_set: contacts.len(),
-        constraints: contact.len(),
+        primal_feasibility: k.primal_feasibility,
+        primal_feasibility_relative: k.primal_feasibility_relative,
+        complementarity: k.complementarity,
+        complementarity_relative: k.complementarity_relative,
+        min_multiplier: k.min_multiplier,
+        stationarity: k.stationarity,
+        active_set: k.active_set,
+        constraints: k.constraints,
         qp_solves: cr.qp_solves,
         steps_without_qp: cr.steps_without_qp,
         polished_qps: cr.polished_qps,
@@ -386,35 +358,4 @@ fn constraint_results(
         qp_seconds: cr.qp_seconds,
     };
     (contacts, kkt)
-}
-
-/// Sphere deviations over the joint positions (all rod nodes when there are no joints),
-/// relative to R; apex height = highest node above the centre over R.
-fn sphere_metrics(net: &Network, t: &Target) -> TargetJson {
-    let Target::Sphere { center, radius } = t;
-    let q = &net.model.state.q;
-    let nodes: Vec<usize> = if net.joints.is_empty() {
-        (0..net.n_nodes).collect()
-    } else {
-        net.joints.iter().map(|j| j.node).collect()
-    };
-    let mut max: f64 = 0.0;
-    let mut sum2 = 0.0;
-    for &n in &nodes {
-        let d = (norm(sub(node_pos(q, n), *center)) - radius) / radius;
-        max = max.max(d.abs());
-        sum2 += d * d;
-    }
-    let apex = (0..net.n_nodes)
-        .map(|n| node_pos(q, n)[2] - center[2])
-        .fold(f64::NEG_INFINITY, f64::max)
-        / radius;
-    TargetJson {
-        shape: "sphere".into(),
-        max_abs_radial_deviation: max,
-        rms_radial_deviation: (sum2 / nodes.len().max(1) as f64).sqrt(),
-        apex_height: apex,
-        max_net_distance: None,
-        rms_net_distance: None,
-    }
 }

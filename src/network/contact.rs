@@ -8,10 +8,10 @@
 //! that satisfies c(x) + ∇c·d ≥ 0 also satisfies c(x + αd) ≥ (1 − α)c(x) for α ∈ [0, 1].
 
 use crate::math::vec::{dot, norm, scalef, sub};
-use crate::network::build::RodInfo;
-use crate::network::model::{Model, FIXED};
+use crate::network::info::RodInfo;
 use crate::scene::types::{Obstacle, Scene};
 use crate::scene::FieldError;
+use crate::variables::{DofLayout, Unknowns};
 
 /// An obstacle with unit directions.
 #[derive(Debug, Clone, Copy)]
@@ -110,16 +110,13 @@ pub struct Contact {
     pub rows: Vec<Row>,
     /// Length scale of the scene (m), for round-off tolerances.
     length_scale: f64,
+    layout: DofLayout,
 }
 
 /// Largest penetration (relative to the length scale) that the rest shape may have; larger
 /// ones are input errors, smaller ones are round-off in the scene's coordinates and are removed
 /// by the first Newton step.
 pub const REST_TOLERANCE: f64 = 1e-9;
-
-fn node_pos(q: &[f64], n: usize) -> [f64; 3] {
-    [q[3 * n], q[3 * n + 1], q[3 * n + 2]]
-}
 
 impl Row {
     /// Value and gradient with respect to the node's position.
@@ -149,7 +146,7 @@ impl Row {
 
     /// Value and gradient at positions `q`.
     pub fn at(&self, c: &Contact, q: &[f64]) -> (f64, [f64; 3]) {
-        self.eval(&c.shapes, node_pos(q, self.node))
+        self.eval(&c.shapes, c.layout.position(q, self.node))
     }
 }
 
@@ -160,12 +157,15 @@ impl Contact {
     pub fn build(
         scene: &Scene,
         rods: &[RodInfo],
-        model: &Model,
+        unknowns: Unknowns,
+        q: &[f64],
+        length_scale: f64,
     ) -> Result<Option<Contact>, FieldError> {
         if scene.obstacles.is_empty() && scene.bounds.is_empty() {
             return Ok(None);
         }
-        let n_nodes = model.state.q.len() / 3;
+        let layout = *unknowns.layout;
+        let n_nodes = layout.n_nodes();
         // A node shared by rods of different sections keeps the largest clearance.
         let mut radius = vec![0.0f64; n_nodes];
         let mut owner: Vec<Option<(usize, usize)>> = vec![None; n_nodes];
@@ -179,7 +179,7 @@ impl Contact {
                 radius[n] = radius[n].max(rod.stiffness.outer_radius);
             }
         }
-        let free = |n: usize| model.free[3 * n] != FIXED;
+        let free = |n: usize| unknowns.of_node(n, 0).is_some();
         let shapes: Vec<Shape> = scene.obstacles.iter().map(Shape::of).collect();
         let mut rows = Vec::new();
         for i in 0..shapes.len() {
@@ -232,17 +232,17 @@ impl Contact {
         let contact = Contact {
             shapes,
             rows,
-            length_scale: model.length_scale,
+            length_scale,
+            layout,
         };
-        let q = &model.state.q;
         for row in &contact.rows {
             let (c, _) = row.at(&contact, q);
-            if c < -REST_TOLERANCE * model.length_scale {
+            if c < -REST_TOLERANCE * length_scale {
                 let (r, k) = owner[row.node].expect("rod node");
                 let at = format!(
                     "node {k} of rod \"{}\" at {:?}",
                     rods[r].name,
-                    node_pos(q, row.node)
+                    layout.position(q, row.node)
                 );
                 return Err(match (row.source, row.kind) {
                     (Source::Obstacle(i), _) => FieldError::new(
@@ -286,11 +286,11 @@ impl Contact {
     }
 
     /// Jacobian non-zeros as (row, free unknown), in the order [`Contact::values`] fills them.
-    pub fn pattern(&self, free: &[u32]) -> Vec<(usize, usize)> {
+    pub fn pattern(&self, unknowns: Unknowns) -> Vec<(usize, usize)> {
         let mut out = Vec::new();
         for (j, row) in self.rows.iter().enumerate() {
             for k in row.axes() {
-                out.push((j, free[3 * row.node + k] as usize));
+                out.push((j, unknowns.of_node(row.node, k).expect("free node")));
             }
         }
         out
@@ -314,7 +314,7 @@ impl Contact {
         let x = self
             .rows
             .iter()
-            .map(|r| norm(node_pos(q, r.node)))
+            .map(|r| norm(self.layout.position(q, r.node)))
             .fold(self.length_scale, f64::max);
         16.0 * f64::EPSILON * x
     }
@@ -338,8 +338,8 @@ impl Contact {
             for r in &self.rows {
                 let (c, g) = r.at(self, q);
                 if c < 0.0 {
-                    for k in 0..3 {
-                        q[3 * r.node + k] -= c * g[k];
+                    for (k, v) in self.layout.node(r.node).into_iter().enumerate() {
+                        q[v] -= c * g[k];
                     }
                 }
             }
@@ -350,10 +350,10 @@ impl Contact {
     /// x + αd + α²·corr satisfies every linearized constraint at α = 1 whenever x + d does. With
     /// convex gaps that keeps the whole curve feasible for α ∈ [0, 1]: the linearized gap
     /// a + αb + α²e is ≥ (1 − α)a when e ≥ 0, and concave with non-negative ends when e < 0.
-    pub fn limit_correction(&self, q: &[f64], free: &[u32], d: &[f64], corr: &mut [f64]) {
+    pub fn limit_correction(&self, q: &[f64], unknowns: Unknowns, d: &[f64], corr: &mut [f64]) {
         for r in &self.rows {
             let (c, g) = r.at(self, q);
-            let fi = |k: usize| free[3 * r.node + k] as usize;
+            let fi = |k: usize| unknowns.of_node(r.node, k).expect("free node");
             let along = |v: &[f64]| r.axes().map(|k| g[k] * v[fi(k)]).sum::<f64>();
             let e = along(corr);
             let total = c + along(d) + e;

@@ -1,35 +1,17 @@
-//! A built network: its state, its energy terms, the map from variables to free unknowns, and
-//! assembly of energy, gradient and Hessian over a fixed sparsity pattern.
+//! The Newton problem of a network and nothing else: the variable layout, the state, the energy
+//! terms, which variables are free, the prescribed motions of the continuation, the scales that
+//! make residuals relative, and the inequality constraints. Assembly is in
+//! [`super::assembly`]; caches of a solve live in the adapter ([`super::problem`]).
 
 use rayon::prelude::*;
 
-use crate::energy::{
-    bend::Bend, frame_bend::FrameBend, frame_twist::FrameTwist, joint_rotation::JointRotation,
-    joint_translation::JointTranslation, point_load::PointLoad, stretch::Stretch, torque::Torque,
-    twist::Twist, Category, Term,
-};
-use crate::math::vec::{normalize, sub, transport};
-#[allow(unused_imports)]
-use crate::math::Real;
-use crate::math::{D1, HD};
-use crate::network::state::State;
+use crate::energy::registry::{TermVisitor, Terms};
+use crate::energy::{Category, Term};
+use crate::math::vec::{normalize, scalef, sub, transport};
+use crate::network::contact::Contact;
+use crate::variables::{DofLayout, FrameRef, State, Unknowns, VarKind};
 
-/// Marks a fixed variable in [`Model::free`] and an unused Hessian slot.
-pub const FIXED: u32 = u32::MAX;
-
-/// All energy terms of a network, grouped by kind so that assembly is monomorphized.
-#[derive(Debug, Clone, Default)]
-pub struct Terms {
-    pub stretch: Vec<Stretch>,
-    pub bend: Vec<Bend>,
-    pub twist: Vec<Twist>,
-    pub frame_bend: Vec<FrameBend>,
-    pub frame_twist: Vec<FrameTwist>,
-    pub joint_rotation: Vec<JointRotation>,
-    pub joint_translation: Vec<JointTranslation>,
-    pub loads: Vec<PointLoad>,
-    pub torques: Vec<Torque>,
-}
+pub use crate::variables::FIXED;
 
 /// Energy split by category, in joules.
 #[derive(Debug, Clone, Copy, Default, PartialEq)]
@@ -45,7 +27,7 @@ impl EnergyParts {
     pub fn total(&self) -> f64 {
         self.stretch + self.bend + self.twist + self.joints + self.external
     }
-    fn add(&mut self, c: Category, e: f64) {
+    pub fn add(&mut self, c: Category, e: f64) {
         match c {
             Category::Stretch => self.stretch += e,
             Category::Bend => self.bend += e,
@@ -54,13 +36,6 @@ impl EnergyParts {
             Category::External => self.external += e,
         }
     }
-}
-
-/// What a variable is, for step limits and residual scaling.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum VarKind {
-    Position,
-    Angle,
 }
 
 /// A fixed vertex frame rotated by `λ · rotation` (rotation vector) over the load steps.
@@ -78,181 +53,109 @@ pub struct Prescribed {
     pub end: f64,
 }
 
+/// Characteristic length (m) and force (N) that make residuals relative.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Scales {
+    pub length: f64,
+    pub force: f64,
+}
+
 #[derive(Debug, Clone)]
 pub struct Model {
+    pub layout: DofLayout,
     pub state: State,
     pub terms: Terms,
-    pub kinds: Vec<VarKind>,
     /// Free index of each variable, or [`FIXED`].
     pub free: Vec<u32>,
     pub n_free: usize,
     pub prescribed: Vec<Prescribed>,
     pub prescribed_rotations: Vec<PrescribedRotation>,
-    /// Global edges as (node a, node b); node k's coordinates are variables 3k..3k+3.
+    /// Global edges as (node a, node b).
     pub edge_nodes: Vec<[usize; 2]>,
     /// Rest length of each global edge.
     pub rest_lengths: Vec<f64>,
-    /// Characteristic length (m) and force (N) used to make residuals relative.
     pub length_scale: f64,
     pub force_scale: f64,
-    /// First ω variable of each vertex frame.
-    pub frame_vars: Vec<usize>,
     /// Contact and bound constraints, when the scene declares any.
-    pub contact: Option<crate::network::contact::Contact>,
-    slots: Slots,
-    pub(crate) projector: crate::network::projection::LazyProjector,
-    /// Scratch copy of the variables for trial evaluations.
-    saved_q: Vec<f64>,
+    pub contact: Option<Contact>,
 }
 
-#[derive(Debug, Clone, Default)]
-struct Slots {
-    stretch: Vec<u32>,
-    bend: Vec<u32>,
-    twist: Vec<u32>,
-    frame_bend: Vec<u32>,
-    frame_twist: Vec<u32>,
-    joint_rotation: Vec<u32>,
-    joint_translation: Vec<u32>,
-    loads: Vec<u32>,
-    torques: Vec<u32>,
-}
-
-/// Output buffers of one assembly over free variables.
-pub struct Assembly<'a> {
-    pub grad: &'a mut [f64],
-    /// Gradient over every variable (for support reactions), if wanted.
-    pub full_grad: Option<&'a mut [f64]>,
-    /// Values of the sparse Hessian's upper triangle, indexed by the slots from `set_slots`.
-    pub hess: Option<&'a mut [f64]>,
+/// The pieces a [`Model`] is made of (everything but the free map, which follows from `fixed`).
+pub struct ModelParts {
+    pub layout: DofLayout,
+    pub state: State,
+    pub terms: Terms,
+    pub fixed: Vec<bool>,
+    pub prescribed: Vec<Prescribed>,
+    pub prescribed_rotations: Vec<PrescribedRotation>,
+    pub edge_nodes: Vec<[usize; 2]>,
+    pub rest_lengths: Vec<f64>,
+    pub scales: Scales,
+    pub contact: Option<Contact>,
 }
 
 impl Model {
-    /// Assembles parts from already-built pieces; `slots` come later from the linear solver.
-    #[allow(clippy::too_many_arguments)]
-    pub fn new(
-        state: State,
-        terms: Terms,
-        kinds: Vec<VarKind>,
-        fixed: &[bool],
-        prescribed: Vec<Prescribed>,
-        edge_nodes: Vec<[usize; 2]>,
-        rest_lengths: Vec<f64>,
-        length_scale: f64,
-        force_scale: f64,
-        frame_vars: Vec<usize>,
-    ) -> Model {
-        let mut free = vec![FIXED; fixed.len()];
+    pub fn new(p: ModelParts) -> Model {
+        debug_assert_eq!(p.fixed.len(), p.layout.len());
+        let mut free = vec![FIXED; p.fixed.len()];
         let mut n_free = 0;
-        for (i, f) in fixed.iter().enumerate() {
+        for (i, f) in p.fixed.iter().enumerate() {
             if !f {
                 free[i] = n_free as u32;
                 n_free += 1;
             }
         }
         Model {
-            state,
-            terms,
-            kinds,
+            layout: p.layout,
+            state: p.state,
+            terms: p.terms,
             free,
             n_free,
-            prescribed,
-            prescribed_rotations: Vec::new(),
-            edge_nodes,
-            rest_lengths,
-            length_scale,
-            force_scale,
-            frame_vars,
-            contact: None,
-            slots: Slots::default(),
-            projector: Default::default(),
-            saved_q: Vec::new(),
+            prescribed: p.prescribed,
+            prescribed_rotations: p.prescribed_rotations,
+            edge_nodes: p.edge_nodes,
+            rest_lengths: p.rest_lengths,
+            length_scale: p.scales.length,
+            force_scale: p.scales.force,
+            contact: p.contact,
         }
     }
 
-    /// Upper-triangle (row ≤ col) pairs of free variables coupled by some term, including every
-    /// diagonal entry, in the order that [`Model::set_slots`] expects.
-    pub fn hessian_pattern(&self) -> Vec<(usize, usize)> {
-        let mut pairs: Vec<(usize, usize)> = (0..self.n_free).map(|i| (i, i)).collect();
-        let t = &self.terms;
-        pattern_of(&t.stretch, &self.free, &mut pairs);
-        pattern_of(&t.bend, &self.free, &mut pairs);
-        pattern_of(&t.twist, &self.free, &mut pairs);
-        pattern_of(&t.frame_bend, &self.free, &mut pairs);
-        pattern_of(&t.frame_twist, &self.free, &mut pairs);
-        pattern_of(&t.joint_rotation, &self.free, &mut pairs);
-        pattern_of(&t.joint_translation, &self.free, &mut pairs);
-        pattern_of(&t.loads, &self.free, &mut pairs);
-        pattern_of(&t.torques, &self.free, &mut pairs);
-        pairs
+    /// The free unknowns, for code that needs the free map but not the model.
+    pub fn unknowns(&self) -> Unknowns<'_> {
+        Unknowns {
+            layout: &self.layout,
+            free: &self.free,
+        }
     }
 
-    /// Receives, for each pair of [`Model::hessian_pattern`], its index in the Hessian values.
-    pub fn set_slots(&mut self, slot_of_pair: &[usize]) {
-        let mut at = self.n_free;
-        let t = &self.terms;
-        let free = &self.free;
-        self.slots = Slots {
-            stretch: slots_of(&t.stretch, free, slot_of_pair, &mut at),
-            bend: slots_of(&t.bend, free, slot_of_pair, &mut at),
-            twist: slots_of(&t.twist, free, slot_of_pair, &mut at),
-            frame_bend: slots_of(&t.frame_bend, free, slot_of_pair, &mut at),
-            frame_twist: slots_of(&t.frame_twist, free, slot_of_pair, &mut at),
-            joint_rotation: slots_of(&t.joint_rotation, free, slot_of_pair, &mut at),
-            joint_translation: slots_of(&t.joint_translation, free, slot_of_pair, &mut at),
-            loads: slots_of(&t.loads, free, slot_of_pair, &mut at),
-            torques: slots_of(&t.torques, free, slot_of_pair, &mut at),
-        };
+    /// What variable `v` is.
+    #[inline]
+    pub fn kind(&self, v: usize) -> VarKind {
+        self.layout.kind(v)
+    }
+
+    /// Position of node `n`.
+    pub fn position(&self, n: usize) -> [f64; 3] {
+        self.layout.position(&self.state.q, n)
     }
 
     /// Energy of the current state, by category.
     pub fn energy_parts(&self) -> EnergyParts {
-        let mut parts = EnergyParts::default();
-        let st = &self.state;
-        let t = &self.terms;
-        parts.add(Category::Stretch, sum_energy(&t.stretch, st));
-        parts.add(Category::Bend, sum_energy(&t.bend, st));
-        parts.add(Category::Twist, sum_energy(&t.twist, st));
-        parts.add(Category::Bend, sum_energy(&t.frame_bend, st));
-        parts.add(Category::Twist, sum_energy(&t.frame_twist, st));
-        parts.add(Category::Joints, sum_energy(&t.joint_rotation, st));
-        parts.add(Category::Joints, sum_energy(&t.joint_translation, st));
-        parts.add(Category::External, sum_energy(&t.loads, st));
-        parts.add(Category::External, sum_energy(&t.torques, st));
-        parts
+        struct Sum<'a>(&'a State, EnergyParts);
+        impl TermVisitor for Sum<'_> {
+            fn visit<const N: usize, E: Term<N>>(&mut self, _: usize, terms: &[E]) {
+                let e = sum_energy(terms, self.0);
+                self.1.add(E::CATEGORY, e);
+            }
+        }
+        let mut sum = Sum(&self.state, EnergyParts::default());
+        self.terms.visit(&mut sum);
+        sum.1
     }
 
     pub fn energy(&self) -> f64 {
         self.energy_parts().total()
-    }
-
-    /// Energy, gradient and (optionally) Hessian at the current state.
-    pub fn assemble(&self, out: &mut Assembly) -> f64 {
-        out.grad.iter_mut().for_each(|g| *g = 0.0);
-        if let Some(f) = out.full_grad.as_deref_mut() {
-            f.iter_mut().for_each(|g| *g = 0.0);
-        }
-        if let Some(h) = out.hess.as_deref_mut() {
-            h.iter_mut().for_each(|g| *g = 0.0);
-        }
-        let (st, t, s) = (&self.state, &self.terms, &self.slots);
-        let mut e = 0.0;
-        e += assemble_kind(&t.stretch, &s.stretch, st, &self.free, out);
-        e += assemble_kind(&t.bend, &s.bend, st, &self.free, out);
-        e += assemble_kind(&t.twist, &s.twist, st, &self.free, out);
-        e += assemble_kind(&t.frame_bend, &s.frame_bend, st, &self.free, out);
-        e += assemble_kind(&t.frame_twist, &s.frame_twist, st, &self.free, out);
-        e += assemble_kind(&t.joint_rotation, &s.joint_rotation, st, &self.free, out);
-        e += assemble_kind(
-            &t.joint_translation,
-            &s.joint_translation,
-            st,
-            &self.free,
-            out,
-        );
-        e += assemble_kind(&t.loads, &s.loads, st, &self.free, out);
-        e += assemble_kind(&t.torques, &s.torques, st, &self.free, out);
-        e
     }
 
     /// Applies `alpha · step` (over free variables) to the variables, without committing.
@@ -264,92 +167,40 @@ impl Model {
         }
     }
 
-    /// Gradient (over free variables) at the current state displaced by `alpha · step`,
-    /// without committing; returns the energy there.
-    pub fn trial_gradient(&mut self, step: &[f64], alpha: f64, grad: &mut [f64]) -> f64 {
-        self.displaced(step, alpha, |m| {
-            m.assemble(&mut Assembly {
-                grad,
-                full_grad: None,
-                hess: None,
-            })
-        })
-    }
-
-    /// Energy at the current state displaced by `alpha · step`, using the current reference
-    /// frames (time-parallel transport from the last accepted iterate).
-    pub fn trial_energy(&mut self, step: &[f64], alpha: f64) -> f64 {
-        self.displaced(step, alpha, |m| m.energy())
-    }
-
-    /// Evaluates `f` at the current state displaced by `alpha · step`, then restores the state
-    /// exactly; the saved copy reuses one buffer, so line searches do not allocate.
-    fn displaced<R>(&mut self, step: &[f64], alpha: f64, f: impl FnOnce(&Self) -> R) -> R {
-        let mut saved = std::mem::take(&mut self.saved_q);
-        saved.clear();
-        saved.extend_from_slice(&self.state.q);
-        self.displace(step, alpha);
-        let r = f(self);
-        std::mem::swap(&mut self.state.q, &mut saved);
-        self.saved_q = saved;
-        r
-    }
-
     /// Accepts the current variables as the new iterate: edge reference frames are transported
     /// in time to the new tangents, reference twists are unwrapped and stored, and frame rotation
     /// increments are folded into the frames' reference rotations.
     pub fn commit(&mut self) {
-        let q = &self.state.q;
+        let (layout, q) = (&self.layout, &self.state.q);
         for (e, [a, b]) in self.edge_nodes.iter().enumerate() {
-            let xa = [q[3 * a], q[3 * a + 1], q[3 * a + 2]];
-            let xb = [q[3 * b], q[3 * b + 1], q[3 * b + 2]];
-            let t = normalize(sub(xb, xa));
+            let t = normalize(sub(layout.position(q, *b), layout.position(q, *a)));
             let r = &mut self.state.edges[e];
             r.u = normalize(transport(r.t, t, r.u));
             r.t = t;
         }
         // Reference twists must be recomputed with the new edge references, which give the same
         // angles as before (transport composes), then stored for unwrapping.
-        let prev: Vec<(usize, f64)> = self
-            .terms
-            .twist
-            .iter()
-            .map(|tw| {
-                (
-                    tw.slot,
-                    tw.reference_twist::<f64>(&self.state, &Twist::reduced(&tw.gather(q))),
-                )
-            })
-            .chain(self.terms.frame_twist.iter().map(|tw| {
-                (
-                    tw.slot,
-                    tw.reference_twist::<f64>(&self.state, &FrameTwist::reduced(&tw.gather(q))),
-                )
-            }))
-            .collect();
-        // Frame twists depend on ω, so fold ω only after their values are taken.
-        for (slot, v) in prev {
-            self.state.twist_prev[slot] = v;
-        }
-        let nf = self.state.frames.len();
-        for f in 0..nf {
-            if let Some(base) = self.frame_var(f) {
-                let w = [
-                    self.state.q[base],
-                    self.state.q[base + 1],
-                    self.state.q[base + 2],
-                ];
-                self.state.frames[f].commit(w);
-                for k in 0..3 {
-                    self.state.q[base + k] = 0.0;
-                }
+        struct Remember<'a>(&'a State, Vec<(usize, f64)>);
+        impl TermVisitor for Remember<'_> {
+            fn visit<const N: usize, E: Term<N>>(&mut self, _: usize, terms: &[E]) {
+                let st = self.0;
+                self.1.extend(terms.iter().filter_map(|t| t.remembered(st)));
             }
         }
-    }
-
-    /// First ω variable of frame `f`.
-    pub fn frame_var(&self, f: usize) -> Option<usize> {
-        self.frame_vars.get(f).copied()
+        let mut remember = Remember(&self.state, Vec::new());
+        self.terms.visit(&mut remember);
+        // Frame twists depend on ω, so fold ω only after their values are taken.
+        for (slot, v) in remember.1 {
+            self.state.twist_prev[slot] = v;
+        }
+        for f in 0..self.layout.n_frames() {
+            let vars = self.layout.frame(f);
+            let w = vars.map(|v| self.state.q[v]);
+            self.state.frames[f].commit(w);
+            for v in vars {
+                self.state.q[v] = 0.0;
+            }
+        }
     }
 
     /// Sets the load factor and the prescribed variables for continuation parameter `lambda`.
@@ -359,8 +210,8 @@ impl Model {
             self.state.q[p.var] = p.start + lambda * (p.end - p.start);
         }
         for p in &self.prescribed_rotations {
-            let w = crate::math::vec::scalef(p.rotation, lambda);
-            let mut f = crate::network::state::FrameRef::identity();
+            let w = scalef(p.rotation, lambda);
+            let mut f = FrameRef::identity();
             f.commit(w);
             self.state.frames[p.frame] = f;
         }
@@ -384,8 +235,9 @@ impl Model {
             let mut de2 = 0.0;
             let mut l2 = 0.0;
             for k in 0..3 {
-                let dd = d(3 * b + k) - d(3 * a + k);
-                let l = q[3 * b + k] - q[3 * a + k];
+                let (vb, va) = (self.layout.node_coord(*b, k), self.layout.node_coord(*a, k));
+                let dd = d(vb) - d(va);
+                let l = q[vb] - q[va];
                 de2 += dd * dd;
                 l2 += l * l;
             }
@@ -394,8 +246,8 @@ impl Model {
                 alpha = alpha.min(lim / de2.sqrt());
             }
         }
-        for (v, k) in self.kinds.iter().enumerate() {
-            if *k == VarKind::Angle {
+        for v in 0..self.free.len() {
+            if self.kind(v) == VarKind::Angle {
                 let s = d(v).abs();
                 if s > 1.0 {
                     alpha = alpha.min(1.0 / s);
@@ -408,14 +260,13 @@ impl Model {
     /// Relative residual that round-off alone produces: a coordinate X carries an absolute error
     /// of about ε·X, so an edge of rest length l̄ and rigidity EA carries a force error of about
     /// 2ε·EA·X/l̄. Stiff, finely subdivided rods cannot be converged below this. A node sums
-    /// the errors of its two edges (more at a joint) and of its bending stencils: with 2ε the
-    /// estimate was exceeded (an L-frame under 1e-5 N at 160 edges per rod stalled at 1.07× it
-    /// and wandered off), so it carries a factor 4.
+    /// the errors of its two edges (more at a joint) and of its bending stencils, so the estimate
+    /// carries a factor 4 over 2ε (docs/convergence.md shows 2ε being exceeded).
     pub fn residual_floor(&self) -> f64 {
         let q = &self.state.q;
-        let x = (0..q.len())
-            .filter(|&v| self.kinds[v] == VarKind::Position)
-            .map(|v| q[v].abs())
+        let x = q[self.layout.positions()]
+            .iter()
+            .map(|x| x.abs())
             .fold(self.length_scale, f64::max);
         let worst = self
             .terms
@@ -435,7 +286,7 @@ impl Model {
                 continue;
             }
             let g = grad[f as usize].abs();
-            let s = match self.kinds[v] {
+            let s = match self.kind(v) {
                 VarKind::Position => self.force_scale,
                 VarKind::Angle => self.force_scale * self.length_scale,
             };
@@ -443,52 +294,75 @@ impl Model {
         }
         r
     }
-}
 
-fn pattern_of<const N: usize, E: Term<N>>(
-    terms: &[E],
-    free: &[u32],
-    pairs: &mut Vec<(usize, usize)>,
-) {
-    for t in terms {
-        let v = t.vars();
-        for i in 0..N {
-            for j in i..N {
-                let (a, b) = (free[v[i]], free[v[j]]);
-                if i != j && a != FIXED && b != FIXED {
-                    let (a, b) = (a.min(b) as usize, a.max(b) as usize);
-                    pairs.push((a, b));
+    /// True when the continuation parameter changes nothing: no external load and no
+    /// prescribed motion.
+    pub fn continuation_is_trivial(&self) -> bool {
+        let external = self.energy_parts_count(Category::External);
+        external == 0
+            && self.prescribed.iter().all(|p| p.start == p.end)
+            && self
+                .prescribed_rotations
+                .iter()
+                .all(|p| p.rotation == [0.0; 3])
+    }
+
+    /// Number of terms of category `c`.
+    fn energy_parts_count(&self, c: Category) -> usize {
+        struct Count(Category, usize);
+        impl TermVisitor for Count {
+            fn visit<const N: usize, E: Term<N>>(&mut self, _: usize, terms: &[E]) {
+                if E::CATEGORY == self.0 {
+                    self.1 += terms.len();
                 }
             }
         }
+        let mut count = Count(c, 0);
+        self.terms.visit(&mut count);
+        count.1
     }
-}
 
-fn slots_of<const N: usize, E: Term<N>>(
-    terms: &[E],
-    free: &[u32],
-    slot_of_pair: &[usize],
-    at: &mut usize,
-) -> Vec<u32> {
-    let mut out = Vec::with_capacity(terms.len() * N * (N + 1) / 2);
-    for t in terms {
-        let v = t.vars();
-        for i in 0..N {
-            for j in i..N {
-                let (a, b) = (free[v[i]], free[v[j]]);
-                if a == FIXED || b == FIXED {
-                    out.push(FIXED);
-                } else if i == j {
-                    // Diagonal pairs come first in the pattern, one per free variable.
-                    out.push(slot_of_pair[a as usize] as u32);
-                } else {
-                    out.push(slot_of_pair[*at] as u32);
-                    *at += 1;
-                }
+    /// Step along `direction` (over free unknowns) whose largest node displacement is 1 % of
+    /// the length scale or whose largest rotation is 0.01 rad, whichever is smaller.
+    pub fn perturbation_size(&self, direction: &[f64]) -> f64 {
+        let mut dx: f64 = 0.0;
+        let mut da: f64 = 0.0;
+        for (v, &f) in self.free.iter().enumerate() {
+            if f == FIXED {
+                continue;
+            }
+            let d = direction[f as usize].abs();
+            match self.kind(v) {
+                VarKind::Position => dx = dx.max(d),
+                VarKind::Angle => da = da.max(d),
+            }
+        }
+        let sx = if dx > 0.0 {
+            1e-2 * self.length_scale / dx
+        } else {
+            f64::INFINITY
+        };
+        let sa = if da > 0.0 { 1e-2 / da } else { f64::INFINITY };
+        sx.min(sa)
+    }
+
+    /// Characteristic size of each free unknown: positions in units of the mean rest edge
+    /// length, angles in radians. Turning an edge by one radian moves its end by about that
+    /// length, so a unit dimensionless step is the same size for both; the bounding box's
+    /// diagonal, the other natural length, would damp the angles of a finely subdivided
+    /// structure by the square of its edge count (docs/design.md).
+    pub fn unknown_scales(&self, scales: &mut [f64]) {
+        let n = self.rest_lengths.len().max(1) as f64;
+        let edge = self.rest_lengths.iter().sum::<f64>() / n;
+        for (v, &f) in self.free.iter().enumerate() {
+            if f != FIXED {
+                scales[f as usize] = match self.kind(v) {
+                    VarKind::Position => edge,
+                    VarKind::Angle => 1.0,
+                };
             }
         }
     }
-    out
 }
 
 fn sum_energy<const N: usize, E: Term<N>>(terms: &[E], st: &State) -> f64 {
@@ -497,107 +371,4 @@ fn sum_energy<const N: usize, E: Term<N>>(terms: &[E], st: &State) -> f64 {
     } else {
         terms.iter().map(|t| t.energy(st)).sum()
     }
-}
-
-/// Terms are differentiated in parallel blocks; each block's local results are scattered
-/// serially, which keeps the sum deterministic.
-const BLOCK: usize = 1024;
-
-fn gradient_kind<const N: usize, E: Term<N>>(
-    terms: &[E],
-    st: &State,
-    free: &[u32],
-    out: &mut Assembly,
-) -> f64 {
-    let mut energy = 0.0;
-    let mut local: Vec<D1<N>> = Vec::new();
-    for block in terms.chunks(BLOCK) {
-        let eval = |t: &E| {
-            let x = D1::<N>::vars(&t.gather(&st.q));
-            t.eval(st, &x)
-        };
-        if block.len() > 64 {
-            block.par_iter().map(eval).collect_into_vec(&mut local);
-        } else {
-            local.clear();
-            local.extend(block.iter().map(eval));
-        }
-        for (t, r) in block.iter().zip(&local) {
-            energy += r.v;
-            let v = t.vars();
-            for i in 0..N {
-                let f = free[v[i]];
-                if f != FIXED {
-                    out.grad[f as usize] += r.g[i];
-                }
-            }
-            if let Some(fg) = out.full_grad.as_deref_mut() {
-                for i in 0..N {
-                    fg[v[i]] += r.g[i];
-                }
-            }
-        }
-    }
-    energy
-}
-
-fn assemble_kind<const N: usize, E: Term<N>>(
-    terms: &[E],
-    slots: &[u32],
-    st: &State,
-    free: &[u32],
-    out: &mut Assembly,
-) -> f64 {
-    let np = N * (N + 1) / 2;
-    let want_h = out.hess.is_some();
-    if !want_h {
-        return gradient_kind(terms, st, free, out);
-    }
-    let mut energy = 0.0;
-    let mut local: Vec<HD<N>> = Vec::new();
-    for (b, block) in terms.chunks(BLOCK).enumerate() {
-        let eval = |t: &E| t.derivatives(st, &t.gather(&st.q));
-        if block.len() > 64 {
-            block.par_iter().map(eval).collect_into_vec(&mut local);
-        } else {
-            local.clear();
-            local.extend(block.iter().map(eval));
-        }
-        for (k, (t, r)) in block.iter().zip(&local).enumerate() {
-            energy += r.v;
-            let v = t.vars();
-            for i in 0..N {
-                let f = free[v[i]];
-                if f != FIXED {
-                    out.grad[f as usize] += r.g[i];
-                }
-            }
-            if let Some(fg) = out.full_grad.as_deref_mut() {
-                for i in 0..N {
-                    fg[v[i]] += r.g[i];
-                }
-            }
-            if want_h {
-                let h = out.hess.as_deref_mut().unwrap();
-                let s = &slots[(b * BLOCK + k) * np..(b * BLOCK + k + 1) * np];
-                let mut p = 0;
-                for i in 0..N {
-                    for j in i..N {
-                        let slot = s[p];
-                        p += 1;
-                        if slot != FIXED {
-                            let mut val = r.h[i][j];
-                            // The same free variable twice in one term: (i,j) and (j,i) both land
-                            // on the diagonal.
-                            if i != j && free[v[i]] == free[v[j]] {
-                                val *= 2.0;
-                            }
-                            h[slot as usize] += val;
-                        }
-                    }
-                }
-            }
-        }
-    }
-    energy
 }

@@ -2,52 +2,58 @@
 //! (`solver::ordering`): a node's coordinates at the node, every other unknown (edge angle,
 //! frame rotation, hinge angle) at the centroid of the nodes of the first term that couples it.
 
-use super::model::{Model, VarKind, FIXED};
+use super::model::Model;
+use crate::energy::registry::TermVisitor;
 use crate::energy::Term;
 
 impl Model {
     pub fn unknown_positions(&self) -> Vec<[f64; 3]> {
-        let mut pos: Vec<Option<[f64; 3]>> = vec![None; self.n_free];
-        let t = &self.terms;
-        self.place(&t.stretch, &mut pos);
-        self.place(&t.bend, &mut pos);
-        self.place(&t.twist, &mut pos);
-        self.place(&t.frame_bend, &mut pos);
-        self.place(&t.frame_twist, &mut pos);
-        self.place(&t.joint_rotation, &mut pos);
-        self.place(&t.joint_translation, &mut pos);
-        self.place(&t.loads, &mut pos);
-        self.place(&t.torques, &mut pos);
+        let mut place = Place {
+            model: self,
+            pos: vec![None; self.n_free],
+        };
+        self.terms.visit(&mut place);
         // An unknown no term touches has no neighbours; anywhere will do.
-        pos.into_iter().map(|p| p.unwrap_or([0.0; 3])).collect()
+        place
+            .pos
+            .into_iter()
+            .map(|p| p.unwrap_or([0.0; 3]))
+            .collect()
     }
+}
 
-    fn place<const N: usize, E: Term<N>>(&self, terms: &[E], pos: &mut [Option<[f64; 3]>]) {
-        let q = &self.state.q;
+struct Place<'a> {
+    model: &'a Model,
+    pos: Vec<Option<[f64; 3]>>,
+}
+
+impl TermVisitor for Place<'_> {
+    fn visit<const N: usize, E: Term<N>>(&mut self, _: usize, terms: &[E]) {
+        let m = self.model;
+        let unknowns = m.unknowns();
         for term in terms {
+            let nodes: Vec<usize> = term
+                .vars()
+                .iter()
+                .filter_map(|&v| m.layout.node_of(v))
+                .collect();
             let mut c = [0.0; 3];
-            let mut k = 0.0;
-            for &v in term.vars() {
-                if self.kinds[v] == VarKind::Position {
-                    let node = v / 3;
-                    for a in 0..3 {
-                        c[a] += q[3 * node + a];
-                    }
-                    k += 1.0;
+            for &n in &nodes {
+                let p = m.position(n);
+                for a in 0..3 {
+                    c[a] += p[a];
                 }
             }
+            let k = nodes.len() as f64;
             for &v in term.vars() {
-                let f = self.free[v];
-                if f == FIXED || pos[f as usize].is_some() {
+                let Some(f) = unknowns.of(v) else { continue };
+                if self.pos[f].is_some() {
                     continue;
                 }
-                pos[f as usize] = Some(if self.kinds[v] == VarKind::Position {
-                    let node = v / 3;
-                    [q[3 * node], q[3 * node + 1], q[3 * node + 2]]
-                } else if k > 0.0 {
-                    [c[0] / k, c[1] / k, c[2] / k]
-                } else {
-                    continue;
+                self.pos[f] = Some(match m.layout.node_of(v) {
+                    Some(n) => m.position(n),
+                    None if k > 0.0 => [c[0] / k, c[1] / k, c[2] / k],
+                    None => continue,
                 });
             }
         }

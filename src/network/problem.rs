@@ -1,163 +1,177 @@
-//! The network as a [`NewtonProblem`].
+//! The network as a [`NewtonProblem`]: a thin adapter that lends the solver a [`Model`] for one
+//! or several solves and keeps what those solves cache (the Hessian slot map, the length
+//! projector) and the scratch copy used by trial evaluations.
 
-use crate::network::model::{Assembly, Model, VarKind, FIXED};
-use crate::network::state::State;
-use crate::solver::NewtonProblem;
+use crate::network::assembly::{Assembly, HessianOut, HessianSlots};
+use crate::network::model::Model;
+use crate::network::projection::Projector;
+use crate::solver::{NewtonProblem, NewtonReport, NewtonSettings};
+use crate::variables::{State, VarKind};
 
-impl NewtonProblem for Model {
+pub struct NetworkProblem<'m> {
+    pub model: &'m mut Model,
+    slots: HessianSlots,
+    projector: Option<Projector>,
+    /// Scratch copy of the variables for trial evaluations.
+    saved_q: Vec<f64>,
+}
+
+impl<'m> NetworkProblem<'m> {
+    pub fn new(model: &'m mut Model) -> Self {
+        NetworkProblem {
+            model,
+            slots: HessianSlots::default(),
+            projector: None,
+            saved_q: Vec::new(),
+        }
+    }
+
+    /// Solves for an equilibrium with the solver's Newton method.
+    pub fn solve(&mut self, settings: &NewtonSettings) -> NewtonReport {
+        crate::solver::solve(self, settings)
+    }
+
+    /// Evaluates `f` at the current state displaced by `alpha · step`, then restores the state
+    /// exactly; the saved copy reuses one buffer, so line searches do not allocate.
+    fn displaced<R>(&mut self, step: &[f64], alpha: f64, f: impl FnOnce(&Model) -> R) -> R {
+        let mut saved = std::mem::take(&mut self.saved_q);
+        saved.clear();
+        saved.extend_from_slice(&self.model.state.q);
+        self.model.displace(step, alpha);
+        let r = f(self.model);
+        std::mem::swap(&mut self.model.state.q, &mut saved);
+        self.saved_q = saved;
+        r
+    }
+}
+
+/// Solves `model` for an equilibrium (one adapter, dropped after the solve).
+pub fn solve(model: &mut Model, settings: &NewtonSettings) -> NewtonReport {
+    NetworkProblem::new(model).solve(settings)
+}
+
+impl NewtonProblem for NetworkProblem<'_> {
     type Snapshot = State;
     fn snapshot(&self) -> State {
-        self.state.clone()
+        self.model.state.clone()
     }
     fn restore(&mut self, s: &State) {
-        self.state.clone_from(s);
+        self.model.state.clone_from(s);
     }
     fn extrapolate(&mut self, from: &State, factor: f64) {
         // Positions only: edge angles are relative to reference frames that differ between the
         // two iterates, and frame increments are zero after every commit.
-        for (v, &f) in self.free.iter().enumerate() {
-            if f != FIXED && self.kinds[v] == VarKind::Position {
-                self.state.q[v] += factor * (self.state.q[v] - from.q[v]);
+        let m = &mut *self.model;
+        for (v, &f) in m.free.iter().enumerate() {
+            if f != crate::variables::FIXED && m.layout.kind(v) == VarKind::Position {
+                m.state.q[v] += factor * (m.state.q[v] - from.q[v]);
             }
         }
-        if let Some(c) = &self.contact {
+        if let Some(c) = &m.contact {
             // The predictor must not start a sub-step inside an obstacle.
-            c.project(&mut self.state.q);
+            c.project(&mut m.state.q);
         }
-        self.commit();
+        m.commit();
     }
     fn residual_floor(&self) -> f64 {
-        Model::residual_floor(self)
+        self.model.residual_floor()
     }
     fn num_free(&self) -> usize {
-        self.n_free
+        self.model.n_free
     }
     fn hessian_pattern(&self) -> Vec<(usize, usize)> {
-        Model::hessian_pattern(self)
+        self.model.hessian_pattern()
     }
     fn set_hessian_slots(&mut self, slots: &[usize]) {
-        self.set_slots(slots)
+        self.slots = self.model.hessian_slots(slots);
     }
     fn assemble(&self, grad: &mut [f64], hess: Option<&mut [f64]>) -> f64 {
-        Model::assemble(
-            self,
-            &mut Assembly {
-                grad,
-                full_grad: None,
-                hess,
-            },
-        )
+        self.model.assemble(&mut Assembly {
+            grad,
+            full_grad: None,
+            hess: hess.map(|values| HessianOut {
+                values,
+                slots: &self.slots,
+            }),
+        })
     }
     fn energy(&self) -> f64 {
-        Model::energy(self)
+        self.model.energy()
     }
     fn trial_energy(&mut self, step: &[f64], alpha: f64) -> f64 {
-        Model::trial_energy(self, step, alpha)
+        self.displaced(step, alpha, |m| m.energy())
     }
     fn trial_gradient(&mut self, step: &[f64], alpha: f64, grad: &mut [f64]) -> f64 {
-        Model::trial_gradient(self, step, alpha, grad)
+        self.displaced(step, alpha, |m| {
+            m.assemble(&mut Assembly {
+                grad,
+                full_grad: None,
+                hess: None,
+            })
+        })
     }
     fn step_correction(&mut self, step: &[f64], c: &mut [f64]) -> bool {
-        let mut proj = self
+        let m = &*self.model;
+        let proj = self
             .projector
-            .0
-            .take()
-            .unwrap_or_else(|| crate::network::projection::Projector::new(self));
-        let r = proj.correction(self, step, c);
-        self.projector.0 = Some(proj);
-        if let (true, Some(contact)) = (r, &self.contact) {
-            contact.limit_correction(&self.state.q, &self.free, step, c);
+            .get_or_insert_with(|| Projector::new(m.unknowns(), &m.edge_nodes));
+        let r = proj.correction(m.unknowns(), &m.edge_nodes, &m.state.q, step, c);
+        if let (true, Some(contact)) = (r, &m.contact) {
+            contact.limit_correction(&m.state.q, m.unknowns(), step, c);
         }
         r
     }
     fn max_step(&self, step: &[f64]) -> f64 {
-        Model::max_step(self, step)
+        self.model.max_step(step)
     }
     fn accept(&mut self, step: &[f64], alpha: f64) {
-        self.displace(step, alpha);
-        self.commit();
+        self.model.displace(step, alpha);
+        self.model.commit();
     }
     fn relative_residual(&self, grad: &[f64]) -> f64 {
-        Model::relative_residual(self, grad)
+        self.model.relative_residual(grad)
     }
     fn unknown_positions(&self) -> Option<Vec<[f64; 3]>> {
-        Some(Model::unknown_positions(self))
+        Some(self.model.unknown_positions())
     }
     fn continuation_is_trivial(&self) -> bool {
-        self.terms.loads.is_empty()
-            && self.terms.torques.is_empty()
-            && self.prescribed.iter().all(|p| p.start == p.end)
-            && self
-                .prescribed_rotations
-                .iter()
-                .all(|p| p.rotation == [0.0; 3])
+        self.model.continuation_is_trivial()
     }
     fn set_continuation(&mut self, lambda: f64) {
-        self.set_load(lambda);
+        self.model.set_load(lambda);
         // Prescribed variables moved: reference frames must follow before the next assembly.
-        self.commit();
+        self.model.commit();
     }
     fn perturbation_size(&self, direction: &[f64]) -> f64 {
-        // Largest node displacement 1 % of the length scale, or largest rotation 0.01 rad.
-        let mut dx: f64 = 0.0;
-        let mut da: f64 = 0.0;
-        for (v, &f) in self.free.iter().enumerate() {
-            if f == FIXED {
-                continue;
-            }
-            let d = direction[f as usize].abs();
-            match self.kinds[v] {
-                VarKind::Position => dx = dx.max(d),
-                VarKind::Angle => da = da.max(d),
-            }
-        }
-        let sx = if dx > 0.0 {
-            1e-2 * self.length_scale / dx
-        } else {
-            f64::INFINITY
-        };
-        let sa = if da > 0.0 { 1e-2 / da } else { f64::INFINITY };
-        sx.min(sa)
+        self.model.perturbation_size(direction)
     }
     fn unknown_scales(&self, scales: &mut [f64]) {
-        // Positions in units of the mean rest edge length, angles in radians: turning an edge
-        // by one radian moves its end by about that length, so a unit dimensionless step is
-        // the same size for both. (The bounding box's diagonal, the other natural length,
-        // damped the angles of the hemisphere's form finding (diagonal 4.4 R, edges 0.06 R)
-        // 5000 times more and took 282 Newton iterations instead of 165.)
-        let n = self.rest_lengths.len().max(1) as f64;
-        let edge = self.rest_lengths.iter().sum::<f64>() / n;
-        for (v, &f) in self.free.iter().enumerate() {
-            if f != FIXED {
-                scales[f as usize] = match self.kinds[v] {
-                    VarKind::Position => edge,
-                    VarKind::Angle => 1.0,
-                };
-            }
-        }
+        self.model.unknown_scales(scales)
     }
     fn num_constraints(&self) -> usize {
-        self.contact.as_ref().map_or(0, |c| c.len())
+        self.model.contact.as_ref().map_or(0, |c| c.len())
     }
     fn constraint_pattern(&self) -> Vec<(usize, usize)> {
-        self.contact
+        let m = &*self.model;
+        m.contact
             .as_ref()
-            .map_or_else(Vec::new, |c| c.pattern(&self.free))
+            .map_or_else(Vec::new, |c| c.pattern(m.unknowns()))
     }
     fn constraints(&self, c: &mut [f64], jac: &mut [f64]) {
-        if let Some(contact) = &self.contact {
-            contact.values(&self.state.q, c, jac);
+        if let Some(contact) = &self.model.contact {
+            contact.values(&self.model.state.q, c, jac);
         }
     }
     fn feasible(&mut self, step: &[f64]) -> bool {
-        let Some(contact) = self.contact.take() else {
+        let m = &mut *self.model;
+        let Some(contact) = m.contact.take() else {
             return true;
         };
-        let current = self.state.q.clone();
-        self.displace(step, 1.0);
-        let ok = contact.admits(&current, &self.state.q);
-        self.state.q = current;
-        self.contact = Some(contact);
+        let current = m.state.q.clone();
+        m.displace(step, 1.0);
+        let ok = contact.admits(&current, &m.state.q);
+        m.state.q = current;
+        m.contact = Some(contact);
         ok
     }
 }

@@ -10,8 +10,8 @@
 //! order.
 
 use crate::math::vec::{dot, norm, normalize, sub};
-use crate::network::model::{Model, FIXED};
 use crate::solver::linalg::SparseCholesky;
+use crate::variables::Unknowns;
 
 /// Edge–edge coupling through free nodes: the pattern of AAᵀ, built once.
 pub struct Projector {
@@ -22,32 +22,12 @@ pub struct Projector {
     offdiag: Vec<(usize, usize, usize, usize, f64)>,
 }
 
-/// Scratch holder whose clones start empty (the projector is rebuilt lazily).
-#[derive(Default)]
-pub struct LazyProjector(pub Option<Projector>);
-
-impl std::fmt::Debug for LazyProjector {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        write!(
-            f,
-            "LazyProjector({})",
-            if self.0.is_some() { "built" } else { "empty" }
-        )
-    }
-}
-
-impl Clone for LazyProjector {
-    fn clone(&self) -> Self {
-        LazyProjector(None)
-    }
-}
-
 impl Projector {
-    pub fn new(m: &Model) -> Projector {
-        let ne = m.edge_nodes.len();
-        let free_node = |n: usize| (0..3).any(|k| m.free[3 * n + k] != FIXED);
-        let mut by_node: Vec<Vec<(usize, f64)>> = vec![Vec::new(); m.state.q.len() / 3 + 1];
-        for (e, [a, b]) in m.edge_nodes.iter().enumerate() {
+    pub fn new(u: Unknowns, edge_nodes: &[[usize; 2]]) -> Projector {
+        let ne = edge_nodes.len();
+        let free_node = |n: usize| (0..3).any(|k| u.of_node(n, k).is_some());
+        let mut by_node: Vec<Vec<(usize, f64)>> = vec![Vec::new(); u.layout.n_nodes()];
+        for (e, [a, b]) in edge_nodes.iter().enumerate() {
             if free_node(*a) {
                 by_node[*a].push((e, -1.0));
             }
@@ -84,26 +64,22 @@ impl Projector {
 
     /// Writes the correction for step `d` (over free unknowns) into `c`. Returns false when there
     /// is nothing to correct.
-    pub fn correction(&mut self, m: &Model, d: &[f64], c: &mut [f64]) -> bool {
-        let q = &m.state.q;
-        let step = |v: usize| match m.free[v] {
-            FIXED => 0.0,
-            f => d[f as usize],
-        };
-        let ne = m.edge_nodes.len();
+    pub fn correction(
+        &mut self,
+        u: Unknowns,
+        edge_nodes: &[[usize; 2]],
+        q: &[f64],
+        d: &[f64],
+        c: &mut [f64],
+    ) -> bool {
+        let step = |n: usize| std::array::from_fn(|k| u.of_node(n, k).map_or(0.0, |f| d[f]));
+        let ne = edge_nodes.len();
         let mut tn = vec![[0.0; 3]; ne];
         let mut s = vec![0.0; ne];
         let mut any = false;
-        for (e, &[a, b]) in m.edge_nodes.iter().enumerate() {
-            let ev = sub(
-                [q[3 * b], q[3 * b + 1], q[3 * b + 2]],
-                [q[3 * a], q[3 * a + 1], q[3 * a + 2]],
-            );
-            let de = [
-                step(3 * b) - step(3 * a),
-                step(3 * b + 1) - step(3 * a + 1),
-                step(3 * b + 2) - step(3 * a + 2),
-            ];
+        for (e, &[a, b]) in edge_nodes.iter().enumerate() {
+            let ev = sub(u.layout.position(q, b), u.layout.position(q, a));
+            let de = sub(step(b), step(a));
             let l = norm(ev);
             let moved = [ev[0] + de[0], ev[1] + de[1], ev[2] + de[2]];
             let lin = l + dot(ev, de) / l;
@@ -116,12 +92,12 @@ impl Projector {
             return false;
         }
         self.chol.values.iter_mut().for_each(|v| *v = 0.0);
-        for (e, &[a, b]) in m.edge_nodes.iter().enumerate() {
+        for (e, &[a, b]) in edge_nodes.iter().enumerate() {
             // |t'|² per free endpoint (partially fixed nodes count their free components).
             let mut dsum = 0.0;
             for n in [a, b] {
                 for k in 0..3 {
-                    if m.free[3 * n + k] != FIXED {
+                    if u.of_node(n, k).is_some() {
                         dsum += tn[e][k] * tn[e][k];
                     }
                 }
@@ -131,7 +107,7 @@ impl Projector {
         for &(slot, e, f, n, sign) in &self.offdiag {
             let mut v = 0.0;
             for k in 0..3 {
-                if m.free[3 * n + k] != FIXED {
+                if u.of_node(n, k).is_some() {
                     v += tn[e][k] * tn[f][k];
                 }
             }
@@ -142,15 +118,14 @@ impl Projector {
         }
         self.chol.solve(&mut s);
         // c = −Aᵀ y.
-        for (e, &[a, b]) in m.edge_nodes.iter().enumerate() {
+        for (e, &[a, b]) in edge_nodes.iter().enumerate() {
             for k in 0..3 {
                 let w = s[e] * tn[e][k];
-                let (fa, fb) = (m.free[3 * a + k], m.free[3 * b + k]);
-                if fb != FIXED {
-                    c[fb as usize] -= w;
+                if let Some(fb) = u.of_node(b, k) {
+                    c[fb] -= w;
                 }
-                if fa != FIXED {
-                    c[fa as usize] += w;
+                if let Some(fa) = u.of_node(a, k) {
+                    c[fa] += w;
                 }
             }
         }

@@ -9,4 +9,4 @@ pub mod settings;
 pub use newton::solve;
 pub use ordering::Ordering;
 pub use problem::NewtonProblem;
-pub use settings::{ConstraintReport, NewtonReport, NewtonSettings};
+pub use settings::{ConstraintReport, NewtonReport, NewtonSettings, Progress};

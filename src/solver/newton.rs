@@ -292,7 +292,7 @@ impl Newton {
                     }
                 }
             }
-            if let Some(cb) = s.progress {
+            if let Some(cb) = &s.progress {
                 cb(step, self.report.iterations, res, e0);
             }
             let floor = p.residual_floor();

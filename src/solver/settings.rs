@@ -1,8 +1,14 @@
 //! Newton solver settings and the report it returns.
 
+use std::sync::Arc;
+
 use serde::Serialize;
 
-#[derive(Debug, Clone)]
+/// Called after every iteration with (load step, iteration, relative residual, energy). A
+/// closure, so that each caller keeps its own context (a progress bar, a log, a channel).
+pub type Progress = Arc<dyn Fn(usize, usize, f64, f64) + Send + Sync>;
+
+#[derive(Clone)]
 pub struct NewtonSettings {
     /// Relative residual tolerance (see `NewtonProblem::relative_residual`).
     pub tolerance: f64,
@@ -10,8 +16,7 @@ pub struct NewtonSettings {
     pub max_iterations: usize,
     /// Continuation steps from λ = 0 to 1.
     pub load_steps: usize,
-    /// Called after every iteration with (load step, iteration, relative residual, energy).
-    pub progress: Option<fn(usize, usize, f64, f64)>,
+    pub progress: Option<Progress>,
     /// Fill-reducing ordering of the factorization.
     pub ordering: super::Ordering,
 }
@@ -28,7 +33,24 @@ impl Default for NewtonSettings {
     }
 }
 
+impl std::fmt::Debug for NewtonSettings {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        f.debug_struct("NewtonSettings")
+            .field("tolerance", &self.tolerance)
+            .field("max_iterations", &self.max_iterations)
+            .field("load_steps", &self.load_steps)
+            .field("progress", &self.progress.as_ref().map(|_| "closure"))
+            .field("ordering", &self.ordering)
+            .finish()
+    }
+}
+
 impl NewtonSettings {
+    /// Reports progress to `f` (see [`Progress`]).
+    pub fn progress(mut self, f: impl Fn(usize, usize, f64, f64) + Send + Sync + 'static) -> Self {
+        self.progress = Some(Arc::new(f));
+        self
+    }
     pub fn tolerance(mut self, t: f64) -> Self {
         self.tolerance = t;
         self

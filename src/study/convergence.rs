@@ -12,13 +12,11 @@ use std::time::Instant;
 
 use crate::gridshell::footprint::{footprint, HemisphereSpec};
 use crate::gridshell::job as gridshell_job;
-use crate::io::reference;
-use crate::io::results::Results;
-use crate::job::settings_of;
 use crate::math::vec::{norm, sub};
-use crate::network::build::{build, Network};
+use crate::network::{build, Network};
+use crate::pipeline::{self, settings_of};
 use crate::scene::{validate, FieldError, Scene, SceneError};
-use crate::solver;
+use crate::solver::Progress;
 use crate::study::richardson::{self, Extrapolation};
 
 /// Largest number of levels (the node limit stops most scenes well before).
@@ -274,20 +272,28 @@ impl Plan {
     }
 
     /// Builds and solves level `index` (0-based).
-    pub fn solve(&self, index: usize, progress: Option<fn(usize, usize, f64, f64)>) -> Level {
+    pub fn solve(&self, index: usize, progress: Option<Progress>) -> Level {
         let (network, results, seconds, reference_error) = match &self.levels {
             Levels::Scenes(scenes) => {
                 let scene = &scenes[index];
-                // `plan` built every level, and building is deterministic.
-                let mut network = build(scene).expect("built in `plan`");
                 let mut settings = settings_of(scene);
                 settings.progress = progress;
-                let t0 = Instant::now();
-                let report = solver::solve(&mut network.model, &settings);
-                let seconds = t0.elapsed().as_secs_f64();
-                let results = Results::collect(&network, &report, scene.target.as_ref());
-                let reference_error = reference::measure(&network, scene).map(|r| r.error);
-                (network, results, seconds, reference_error)
+                let mut seconds = 0.0;
+                // `plan` built every level, and building is deterministic.
+                let solution = pipeline::run(
+                    scene,
+                    &settings,
+                    |net, s| {
+                        let t0 = Instant::now();
+                        let report = crate::network::solve(&mut net.model, s);
+                        seconds = t0.elapsed().as_secs_f64();
+                        report
+                    },
+                    |_, _| {},
+                )
+                .expect("built in `plan`");
+                let reference_error = solution.equilibrium.reference.as_ref().map(|r| r.error);
+                (solution.network, solution.results, seconds, reference_error)
             }
             Levels::Hemisphere { specs, start_cap } => {
                 let run = gridshell_job::run(&specs[index], *start_cap, progress)
@@ -301,7 +307,7 @@ impl Plan {
         Level {
             level: index + 1,
             subdivide: self.subdivide[index],
-            nodes: network.n_nodes,
+            nodes: network.n_nodes(),
             dofs: network.model.n_free,
             iterations: results.iterations,
             seconds,
@@ -326,8 +332,7 @@ impl Plan {
     }
 
     fn probe_positions(&self, net: &Network) -> Vec<[f64; 3]> {
-        let q = &net.model.state.q;
-        let at = |n: usize| [q[3 * n], q[3 * n + 1], q[3 * n + 2]];
+        let at = |n: usize| net.model.position(n);
         let rods: HashMap<&str, _> = net.rods.iter().map(|r| (r.name.as_str(), r)).collect();
         let joints: HashMap<&str, usize> = net
             .joints

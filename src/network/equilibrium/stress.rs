@@ -6,9 +6,20 @@
 //! unstressed; only free ends are.
 
 use crate::energy::{frame_twist::FrameTwist, twist::Twist, Term};
-use crate::math::vec::{norm, sub};
-use crate::network::build::{Network, RodInfo};
+use crate::math::vec::{dot, norm, sub};
+use crate::network::info::{Network, RodInfo};
 use crate::rod::section::Section;
+
+/// Bending at one rod node.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct VertexBending {
+    /// Curvature of the deformed centreline 2 sin(φ/2)/l̄, 1/m.
+    pub curvature: f64,
+    /// Extreme-fibre bending strain from the curvature change.
+    pub strain: f64,
+    /// Bending stress, Pa.
+    pub stress: f64,
+}
 
 /// Extreme-fibre strain of a curvature change (Δκ1, Δκ2) in 1/m: the largest of
 /// Δκ1·y1 + Δκ2·y2 over the section, with y1 along m1.
@@ -86,20 +97,8 @@ fn strains(net: &Network) -> Vec<Vec<f64>> {
     out
 }
 
-/// Per node: (curvature of the deformed centreline 2 sin(φ/2)/l̄ in 1/m, extreme-fibre bending
-/// strain from the curvature change, bending stress in Pa).
-pub fn vertex_bending(net: &Network, rod: &RodInfo) -> Vec<(f64, f64, f64)> {
-    let index = net
-        .rods
-        .iter()
-        .position(|r| std::ptr::eq(r, rod))
-        .or_else(|| net.rods.iter().position(|r| r.name == rod.name));
-    let strain = index.map(|i| strains(net).swap_remove(i));
-    bending_with(net, rod, strain.as_deref())
-}
-
-/// [`vertex_bending`] for every rod at once (one pass over the terms).
-pub fn all_vertex_bending(net: &Network) -> Vec<Vec<(f64, f64, f64)>> {
+/// Bending at every node of every rod, indexed like `net.rods` (one pass over the terms).
+pub fn all_vertex_bending(net: &Network) -> Vec<Vec<VertexBending>> {
     let s = strains(net);
     net.rods
         .iter()
@@ -108,9 +107,8 @@ pub fn all_vertex_bending(net: &Network) -> Vec<Vec<(f64, f64, f64)>> {
         .collect()
 }
 
-fn bending_with(net: &Network, rod: &RodInfo, strain: Option<&[f64]>) -> Vec<(f64, f64, f64)> {
-    let q = &net.model.state.q;
-    let pos = |n: usize| [q[3 * n], q[3 * n + 1], q[3 * n + 2]];
+fn bending_with(net: &Network, rod: &RodInfo, strain: Option<&[f64]>) -> Vec<VertexBending> {
+    let pos = |n: usize| net.model.position(n);
     let np = rod.nodes.len();
     (0..np)
         .map(|j| {
@@ -123,20 +121,17 @@ fn bending_with(net: &Network, rod: &RodInfo, strain: Option<&[f64]>) -> Vec<(f6
                 let d = pos(rod.nodes[(j + 1) % np]);
                 let (e0, e1) = (sub(b, a), sub(d, b));
                 let (l0, l1) = (norm(e0), norm(e1));
-                let cosang = (e0[0] * e1[0] + e0[1] * e1[1] + e0[2] * e1[2]) / (l0 * l1);
+                let cosang = dot(e0, e1) / (l0 * l1);
                 let phi = cosang.clamp(-1.0, 1.0).acos();
                 2.0 * (0.5 * phi).sin() / (0.5 * (l0 + l1))
             } else {
                 0.0
             };
-            (kappa, eps, eps * rod.young_modulus)
+            VertexBending {
+                curvature: kappa,
+                strain: eps,
+                stress: eps * rod.young_modulus,
+            }
         })
         .collect()
-}
-
-pub fn max_bending_stress(net: &Network, rod: &RodInfo) -> f64 {
-    vertex_bending(net, rod)
-        .iter()
-        .map(|v| v.2)
-        .fold(0.0, f64::max)
 }

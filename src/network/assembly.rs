@@ -1,0 +1,236 @@
+//! Energy, gradient and Hessian of a [`Model`] over its free unknowns, on a sparsity pattern
+//! fixed for the model's lifetime. The Hessian's value array belongs to the linear solver; the
+//! map from each term's local pairs to that array ([`HessianSlots`]) belongs to whoever owns the
+//! array (the Newton adapter, a test, a benchmark).
+
+use rayon::prelude::*;
+
+use super::model::{Model, FIXED};
+use crate::energy::registry::{TermVisitor, Terms};
+use crate::energy::Term;
+use crate::math::{D1, HD};
+use crate::variables::State;
+
+/// For each term kind, for each term, for each local pair (i ≤ j): its index in the Hessian
+/// values, or [`FIXED`].
+#[derive(Debug, Clone, Default)]
+pub struct HessianSlots(Vec<Vec<u32>>);
+
+/// Where the Hessian goes: its values (by slot) and the slot map built on the same pattern.
+pub struct HessianOut<'a> {
+    pub values: &'a mut [f64],
+    pub slots: &'a HessianSlots,
+}
+
+/// Output buffers of one assembly over free variables.
+pub struct Assembly<'a> {
+    pub grad: &'a mut [f64],
+    /// Gradient over every variable (for support reactions), if wanted.
+    pub full_grad: Option<&'a mut [f64]>,
+    pub hess: Option<HessianOut<'a>>,
+}
+
+impl Model {
+    /// Upper-triangle (row ≤ col) pairs of free variables coupled by some term, including every
+    /// diagonal entry, in the order that [`Model::hessian_slots`] expects.
+    pub fn hessian_pattern(&self) -> Vec<(usize, usize)> {
+        struct Pattern<'a>(&'a [u32], Vec<(usize, usize)>);
+        impl TermVisitor for Pattern<'_> {
+            fn visit<const N: usize, E: Term<N>>(&mut self, _: usize, terms: &[E]) {
+                let free = self.0;
+                for t in terms {
+                    let v = t.vars();
+                    for i in 0..N {
+                        for j in i + 1..N {
+                            let (a, b) = (free[v[i]], free[v[j]]);
+                            if a != FIXED && b != FIXED {
+                                self.1.push((a.min(b) as usize, a.max(b) as usize));
+                            }
+                        }
+                    }
+                }
+            }
+        }
+        let mut p = Pattern(&self.free, (0..self.n_free).map(|i| (i, i)).collect());
+        self.terms.visit(&mut p);
+        p.1
+    }
+
+    /// The slot map from, for each pair of [`Model::hessian_pattern`], its index in the Hessian
+    /// values.
+    pub fn hessian_slots(&self, slot_of_pair: &[usize]) -> HessianSlots {
+        struct Slots<'a> {
+            free: &'a [u32],
+            slot_of_pair: &'a [usize],
+            at: usize,
+            out: Vec<Vec<u32>>,
+        }
+        impl TermVisitor for Slots<'_> {
+            fn visit<const N: usize, E: Term<N>>(&mut self, _: usize, terms: &[E]) {
+                let mut out = Vec::with_capacity(terms.len() * N * (N + 1) / 2);
+                for t in terms {
+                    let v = t.vars();
+                    for i in 0..N {
+                        for j in i..N {
+                            let (a, b) = (self.free[v[i]], self.free[v[j]]);
+                            if a == FIXED || b == FIXED {
+                                out.push(FIXED);
+                            } else if i == j {
+                                // Diagonal pairs come first in the pattern, one per free variable.
+                                out.push(self.slot_of_pair[a as usize] as u32);
+                            } else {
+                                out.push(self.slot_of_pair[self.at] as u32);
+                                self.at += 1;
+                            }
+                        }
+                    }
+                }
+                self.out.push(out);
+            }
+        }
+        let mut s = Slots {
+            free: &self.free,
+            slot_of_pair,
+            at: self.n_free,
+            out: Vec::with_capacity(Terms::KINDS),
+        };
+        self.terms.visit(&mut s);
+        HessianSlots(s.out)
+    }
+
+    /// Energy, gradient and (optionally) Hessian at the current state.
+    pub fn assemble(&self, out: &mut Assembly) -> f64 {
+        out.grad.iter_mut().for_each(|g| *g = 0.0);
+        if let Some(f) = out.full_grad.as_deref_mut() {
+            f.iter_mut().for_each(|g| *g = 0.0);
+        }
+        if let Some(h) = out.hess.as_mut() {
+            h.values.iter_mut().for_each(|g| *g = 0.0);
+        }
+        let mut a = Assemble {
+            st: &self.state,
+            free: &self.free,
+            out,
+            energy: 0.0,
+        };
+        self.terms.visit(&mut a);
+        a.energy
+    }
+}
+
+struct Assemble<'a, 'b> {
+    st: &'a State,
+    free: &'a [u32],
+    out: &'a mut Assembly<'b>,
+    energy: f64,
+}
+
+impl TermVisitor for Assemble<'_, '_> {
+    fn visit<const N: usize, E: Term<N>>(&mut self, kind: usize, terms: &[E]) {
+        let slots: Option<&HessianSlots> = self.out.hess.as_ref().map(|h| h.slots);
+        self.energy += match slots {
+            None => gradient_kind(terms, self.st, self.free, self.out),
+            Some(s) => hessian_kind(terms, &s.0[kind], self.st, self.free, self.out),
+        };
+    }
+}
+
+/// Terms are differentiated in parallel blocks; each block's local results are scattered
+/// serially, which keeps the sum deterministic.
+const BLOCK: usize = 1024;
+
+/// Evaluates `eval` on every term of `block` into `local`, in parallel for large blocks.
+fn evaluate<E: Sync, R: Send>(
+    block: &[E],
+    local: &mut Vec<R>,
+    eval: impl Fn(&E) -> R + Sync + Send,
+) {
+    if block.len() > 64 {
+        block.par_iter().map(eval).collect_into_vec(local);
+    } else {
+        local.clear();
+        local.extend(block.iter().map(eval));
+    }
+}
+
+/// Adds a term's gradient `g` over its variables `v` to the free and (if wanted) full gradient.
+fn scatter_gradient<const N: usize>(
+    v: &[usize; N],
+    g: &[f64; N],
+    free: &[u32],
+    out: &mut Assembly,
+) {
+    for i in 0..N {
+        let f = free[v[i]];
+        if f != FIXED {
+            out.grad[f as usize] += g[i];
+        }
+    }
+    if let Some(fg) = out.full_grad.as_deref_mut() {
+        for i in 0..N {
+            fg[v[i]] += g[i];
+        }
+    }
+}
+
+fn gradient_kind<const N: usize, E: Term<N>>(
+    terms: &[E],
+    st: &State,
+    free: &[u32],
+    out: &mut Assembly,
+) -> f64 {
+    let mut energy = 0.0;
+    let mut local: Vec<D1<N>> = Vec::new();
+    for block in terms.chunks(BLOCK) {
+        evaluate(block, &mut local, |t: &E| {
+            let x = D1::<N>::vars(&t.gather(&st.q));
+            t.eval(st, &x)
+        });
+        for (t, r) in block.iter().zip(&local) {
+            energy += r.v;
+            scatter_gradient(t.vars(), &r.g, free, out);
+        }
+    }
+    energy
+}
+
+fn hessian_kind<const N: usize, E: Term<N>>(
+    terms: &[E],
+    slots: &[u32],
+    st: &State,
+    free: &[u32],
+    out: &mut Assembly,
+) -> f64 {
+    let np = N * (N + 1) / 2;
+    let mut energy = 0.0;
+    let mut local: Vec<HD<N>> = Vec::new();
+    for (b, block) in terms.chunks(BLOCK).enumerate() {
+        evaluate(block, &mut local, |t: &E| {
+            t.derivatives(st, &t.gather(&st.q))
+        });
+        for (k, (t, r)) in block.iter().zip(&local).enumerate() {
+            energy += r.v;
+            let v = t.vars();
+            scatter_gradient(v, &r.g, free, out);
+            let h = &mut out.hess.as_mut().expect("Hessian output").values;
+            let s = &slots[(b * BLOCK + k) * np..(b * BLOCK + k + 1) * np];
+            let mut p = 0;
+            for i in 0..N {
+                for j in i..N {
+                    let slot = s[p];
+                    p += 1;
+                    if slot != FIXED {
+                        let mut val = r.h[i][j];
+                        // The same free variable twice in one term: (i,j) and (j,i) both land
+                        // on the diagonal.
+                        if i != j && free[v[i]] == free[v[j]] {
+                            val *= 2.0;
+                        }
+                        h[slot as usize] += val;
+                    }
+                }
+            }
+        }
+    }
+    energy
+}

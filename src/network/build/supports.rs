@@ -1,0 +1,93 @@
+//! Supports: pinned and clamped nodes leave the unknowns; `move_to` and `rotate_by` become
+//! motions prescribed over the continuation.
+
+use std::collections::HashMap;
+
+use super::geometry::Rest;
+use super::nodes::Numbered;
+use crate::network::info::SupportInfo;
+use crate::network::joint::PortTable;
+use crate::network::model::{Prescribed, PrescribedRotation};
+use crate::scene::types::SupportKind;
+use crate::scene::FieldError;
+use crate::variables::DofLayout;
+
+pub struct Supported {
+    pub prescribed: Vec<Prescribed>,
+    pub rotations: Vec<PrescribedRotation>,
+    pub infos: Vec<SupportInfo>,
+}
+
+pub fn apply(
+    rest: &Rest,
+    net: &Numbered,
+    table: &PortTable,
+    layout: &DofLayout,
+    fixed: &mut [bool],
+) -> Result<Supported, FieldError> {
+    let mut out = Supported {
+        prescribed: Vec::new(),
+        rotations: Vec::new(),
+        infos: Vec::new(),
+    };
+    let mut moved: HashMap<usize, [f64; 3]> = HashMap::new();
+    for (si, s) in rest.scene.supports.iter().enumerate() {
+        let (r, rnode) = rest.site(&s.rod, s.vertex);
+        let node = net.rods[r].nodes[rnode];
+        for v in layout.node(node) {
+            fixed[v] = true;
+        }
+        if let Some(target) = s.move_to {
+            match moved.insert(node, target) {
+                Some(prev) if prev != target => {
+                    return Err(FieldError::new(
+                        "supports",
+                        si,
+                        "move_to",
+                        "this node already has a different `move_to` from another support".into(),
+                    ))
+                }
+                Some(_) => {}
+                None => out
+                    .prescribed
+                    .extend(
+                        layout
+                            .node(node)
+                            .iter()
+                            .enumerate()
+                            .map(|(k, &var)| Prescribed {
+                                var,
+                                start: net.rest_pos[node][k],
+                                end: target[k],
+                            }),
+                    ),
+            }
+        }
+        let frame = match s.kind {
+            SupportKind::Clamp => table
+                .port_of
+                .get(&(r, rnode))
+                .map(|&p| table.ports[p].frame),
+            SupportKind::Pin => None,
+        };
+        if let (Some(f), Some(rotation)) = (frame, s.rotate_by) {
+            if out.rotations.iter().any(|p| p.frame == f) {
+                return Err(FieldError::new(
+                    "supports",
+                    si,
+                    "rotate_by",
+                    "this clamp's frame is already rotated by another support".into(),
+                ));
+            }
+            out.rotations
+                .push(PrescribedRotation { frame: f, rotation });
+        }
+        out.infos.push(SupportInfo {
+            rod: s.rod.clone(),
+            vertex: s.vertex,
+            node,
+            frame,
+        });
+    }
+    Ok(out)
+}

@@ -1,0 +1,160 @@
+//! What a solve found, computed once from the network at its final state: positions, energies
+//! (by category, by term kind, by rod), reactions, internal forces and stresses, contact forces
+//! with the KKT measures, and the comparisons the scene asks for (target, reference). Output
+//! formats (`io`) only format this value.
+
+mod constraints;
+mod reference;
+mod rod_energy;
+mod stress;
+mod target;
+
+use serde::{Deserialize, Serialize};
+
+use crate::energy::registry::{TermVisitor, Terms};
+use crate::energy::Term;
+use crate::network::assembly::Assembly;
+use crate::network::info::Network;
+use crate::network::model::EnergyParts;
+use crate::scene::Scene;
+use crate::solver::NewtonReport;
+
+pub use constraints::{ConstraintForces, ContactForce, Kkt};
+pub use reference::ReferenceCheck;
+pub use rod_energy::RodEnergy;
+pub use stress::VertexBending;
+pub use target::TargetCheck;
+
+/// One rod at equilibrium.
+#[derive(Debug, Clone)]
+pub struct RodEquilibrium {
+    pub name: String,
+    /// Every node after subdivision, m.
+    pub points: Vec<[f64; 3]>,
+    /// Material-frame angle θ of each edge relative to its time-parallel reference frame, rad.
+    pub twist: Vec<f64>,
+    /// Length after deformation, m.
+    pub length: f64,
+    pub energy: RodEnergy,
+    /// Curvature, bending strain and stress at each node.
+    pub bending: Vec<VertexBending>,
+    /// Axial force EA (|e|/|ē| − 1) in each edge, N (tension positive).
+    pub axial_force: Vec<f64>,
+}
+
+/// Force and moment a support exerts on the structure.
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
+pub struct Reaction {
+    /// N.
+    pub force: [f64; 3],
+    /// N·m (clamps; zero for pins).
+    pub moment: [f64; 3],
+}
+
+#[derive(Debug, Clone)]
+pub struct Equilibrium {
+    pub energy: EnergyParts,
+    /// Energy of each term kind, in the order of [`Terms::NAMES`], J.
+    pub energy_by_kind: Vec<(&'static str, f64)>,
+    pub rods: Vec<RodEquilibrium>,
+    /// Joint names and positions, m.
+    pub joints: Vec<(String, [f64; 3])>,
+    /// Support (rod, vertex) and its reaction; two supports on one node share it (each reports
+    /// the node's whole reaction).
+    pub reactions: Vec<(String, usize, Reaction)>,
+    /// Scenes with obstacles or bounds only.
+    pub constraints: Option<ConstraintForces>,
+    pub target: Option<TargetCheck>,
+    pub reference: Option<ReferenceCheck>,
+    pub free_unknowns: usize,
+}
+
+impl Equilibrium {
+    /// Measures `net` (built from `scene`) at its current state; `report` is the solve that
+    /// brought it there (its constraint multipliers and tolerance).
+    pub fn compute(net: &Network, scene: &Scene, report: &NewtonReport) -> Equilibrium {
+        let m = &net.model;
+        let q = &m.state.q;
+        let mut grad = vec![0.0; m.n_free];
+        let mut full = vec![0.0; q.len()];
+        m.assemble(&mut Assembly {
+            grad: &mut grad,
+            full_grad: Some(&mut full),
+            hess: None,
+        });
+        let energies = rod_energy::per_rod(net);
+        let bending = stress::all_vertex_bending(net);
+        let rods = net
+            .rods
+            .iter()
+            .zip(energies)
+            .zip(bending)
+            .map(|((r, energy), bending)| RodEquilibrium {
+                name: r.name.clone(),
+                points: r.nodes.iter().map(|&n| m.position(n)).collect(),
+                twist: r.edges.iter().map(|&e| q[m.layout.theta(e)]).collect(),
+                length: r.edges.iter().map(|&e| edge_length(net, e)).sum(),
+                energy,
+                bending,
+                axial_force: r.edges.iter().map(|&e| axial_force(net, e)).collect(),
+            })
+            .collect();
+        let reactions = net
+            .supports
+            .iter()
+            .map(|s| {
+                let force = m.layout.node(s.node).map(|v| full[v]);
+                let moment = s
+                    .frame
+                    .map_or([0.0; 3], |f| m.layout.frame(f).map(|v| full[v]));
+                (s.rod.clone(), s.vertex, Reaction { force, moment })
+            })
+            .collect();
+        let constraints = m.contact.as_ref().map(|c| {
+            // A scene whose constrained nodes are all supported has no rows and no QP.
+            let none = Default::default();
+            let cr = report.constraints.as_ref().unwrap_or(&none);
+            constraints::forces(net, c, cr, &grad, report.tolerance)
+        });
+        Equilibrium {
+            energy: m.energy_parts(),
+            energy_by_kind: energy_by_kind(net),
+            rods,
+            joints: net
+                .joints
+                .iter()
+                .map(|j| (j.name.clone(), m.position(j.node)))
+                .collect(),
+            reactions,
+            constraints,
+            target: scene.target.as_ref().map(|t| target::check(net, t)),
+            reference: reference::check(net, scene),
+            free_unknowns: m.n_free,
+        }
+    }
+}
+
+fn edge_length(net: &Network, e: usize) -> f64 {
+    let m = &net.model;
+    let [a, b] = m.edge_nodes[e];
+    crate::math::vec::norm(crate::math::vec::sub(m.position(b), m.position(a)))
+}
+
+fn axial_force(net: &Network, e: usize) -> f64 {
+    let s = &net.model.terms.stretch[e];
+    debug_assert_eq!(s.edge, e, "one stretch term per edge, in edge order");
+    s.ea * (edge_length(net, e) / s.rest_length - 1.0)
+}
+
+fn energy_by_kind(net: &Network) -> Vec<(&'static str, f64)> {
+    struct ByKind<'a>(&'a crate::variables::State, Vec<(&'static str, f64)>);
+    impl TermVisitor for ByKind<'_> {
+        fn visit<const N: usize, E: Term<N>>(&mut self, kind: usize, terms: &[E]) {
+            let e = terms.iter().map(|t| t.energy(self.0)).sum();
+            self.1.push((Terms::NAMES[kind], e));
+        }
+    }
+    let mut v = ByKind(&net.model.state, Vec::with_capacity(Terms::KINDS));
+    net.model.terms.visit(&mut v);
+    v.1
+}

@@ -1,0 +1,65 @@
+//! The one pipeline every command runs: scene → network → solve → equilibrium → results.
+//! Commands differ only in how they solve (plain Newton, or a gridshell's form finding) and in
+//! what they add to the measurements; both are passed in.
+
+use crate::io::results::Results;
+use crate::network::equilibrium::Equilibrium;
+use crate::network::{build, Network};
+use crate::scene::{FieldError, Scene};
+use crate::solver::{NewtonReport, NewtonSettings};
+
+pub struct Solution {
+    pub network: Network,
+    pub report: NewtonReport,
+    pub equilibrium: Equilibrium,
+    pub results: Results,
+}
+
+/// The solver settings a scene asks for.
+pub fn settings_of(scene: &Scene) -> NewtonSettings {
+    NewtonSettings::default()
+        .tolerance(scene.solver.tolerance)
+        .max_iterations(scene.solver.max_iterations)
+        .load_steps(scene.solver.load_steps)
+}
+
+/// Builds a validated scene and solves it with Newton's method and load stepping.
+pub fn solve_scene(scene: &Scene, settings: &NewtonSettings) -> Result<Solution, FieldError> {
+    run(
+        scene,
+        settings,
+        |net, s| crate::network::solve(&mut net.model, s),
+        |_, _| {},
+    )
+}
+
+/// Builds a validated scene, solves it with `solve`, measures the equilibrium (then lets
+/// `measure` add to it) and forms the results.
+pub fn run(
+    scene: &Scene,
+    settings: &NewtonSettings,
+    solve: impl FnOnce(&mut Network, &NewtonSettings) -> NewtonReport,
+    measure: impl FnOnce(&Network, &mut Equilibrium),
+) -> Result<Solution, FieldError> {
+    let mut network = build(scene)?;
+    let report = solve(&mut network, settings);
+    Ok(finish(network, scene, report, measure))
+}
+
+/// The equilibrium and results of a solved network.
+pub fn finish(
+    network: Network,
+    scene: &Scene,
+    report: NewtonReport,
+    measure: impl FnOnce(&Network, &mut Equilibrium),
+) -> Solution {
+    let mut equilibrium = Equilibrium::compute(&network, scene, &report);
+    measure(&network, &mut equilibrium);
+    let results = Results::new(&equilibrium, &report);
+    Solution {
+        network,
+        report,
+        equilibrium,
+        results,
+    }
+}
