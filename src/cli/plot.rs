@@ -38,13 +38,9 @@ pub fn run(a: &PlotArgs) -> i32 {
         Ok(t) => t,
         Err(e) => return bad(e),
     };
-    let v: serde_json::Value = match serde_json::from_str(&text) {
-        Ok(v) => v,
-        Err(e) => return bad(format_args!("{file}:{}:{}: {e}", e.line(), e.column())),
-    };
-    let rods = match plot::rods_from_json(&v) {
+    let rods = match plot::rods_from_json(&file, &text) {
         Ok(r) => r,
-        Err(e) => return bad(format_args!("{file}: {e}")),
+        Err(e) => return bad(e),
     };
     let title = a.title.clone().unwrap_or_else(|| {
         let name = a

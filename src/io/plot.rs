@@ -5,6 +5,8 @@
 
 use plotters::prelude::*;
 
+use crate::io::results::{Results, RodJson};
+
 /// One rod to draw.
 #[derive(Debug, Clone, PartialEq)]
 pub struct PlotRod {
@@ -15,82 +17,62 @@ pub struct PlotRod {
     pub closed: bool,
 }
 
-/// Reads the rods of a results JSON: `points` per rod, per-node `bending_stress` when present,
-/// else the rod's `max_bending_stress`, else zero. Errors name the offending key.
-pub fn rods_from_json(v: &serde_json::Value) -> Result<Vec<PlotRod>, String> {
-    let rods = v
-        .get("rods")
-        .and_then(|r| r.as_array())
-        .ok_or("no `rods` array: not a rodnet results JSON")?;
-    if rods.is_empty() {
-        return Err("`rods` is empty: nothing to draw".into());
+/// Reads the rods of a results JSON through the results schema ([`Results`]): `points` per
+/// rod, per-node `bending_stress` when present, else the rod's `max_bending_stress`, else zero.
+/// Errors name the file (`file`), and the line, column and key of the offending value.
+pub fn rods_from_json(file: &str, text: &str) -> Result<Vec<PlotRod>, String> {
+    let de = &mut serde_json::Deserializer::from_str(text);
+    let results: Results = serde_path_to_error::deserialize(de).map_err(|e| {
+        let inner = e.inner();
+        if e.path().iter().next().is_none() && inner.to_string().starts_with("missing field `rods`")
+        {
+            format!("{file}: no `rods` array: not a rodnet results JSON")
+        } else {
+            format!(
+                "{file}:{}:{}: {}: {inner}",
+                inner.line(),
+                inner.column(),
+                e.path()
+            )
+        }
+    })?;
+    if results.rods.is_empty() {
+        return Err(format!("{file}: `rods` is empty: nothing to draw"));
     }
-    let mut out = Vec::with_capacity(rods.len());
-    for (i, r) in rods.iter().enumerate() {
-        let name = r
-            .get("name")
-            .and_then(|n| n.as_str())
-            .unwrap_or("")
-            .to_string();
-        let pts = r
-            .get("points")
-            .and_then(|p| p.as_array())
-            .ok_or_else(|| format!("rods[{i}].points: missing or not an array"))?;
-        if pts.len() < 2 {
-            return Err(format!("rods[{i}].points: needs at least 2 points"));
-        }
-        let mut points = Vec::with_capacity(pts.len());
-        for (k, p) in pts.iter().enumerate() {
-            let xyz = p.as_array().filter(|a| a.len() == 3).and_then(|a| {
-                let c: Vec<f64> = a.iter().filter_map(|x| x.as_f64()).collect();
-                (c.len() == 3).then(|| [c[0], c[1], c[2]])
-            });
-            points.push(xyz.ok_or_else(|| {
-                format!("rods[{i}].points[{k}]: expected [x, y, z] numbers, got {p}")
-            })?);
-        }
-        let stress = match r.get("bending_stress") {
-            Some(s) => {
-                let a = s
-                    .as_array()
-                    .ok_or_else(|| format!("rods[{i}].bending_stress: not an array"))?;
-                if a.len() != points.len() {
-                    return Err(format!(
-                        "rods[{i}].bending_stress: {} values for {} points",
-                        a.len(),
-                        points.len()
-                    ));
-                }
-                a.iter()
-                    .enumerate()
-                    .map(|(k, x)| {
-                        x.as_f64().filter(|x| x.is_finite()).ok_or_else(|| {
-                            format!("rods[{i}].bending_stress[{k}]: not a number: {x}")
-                        })
-                    })
-                    .collect::<Result<Vec<f64>, String>>()?
-            }
-            None => {
-                let m = r
-                    .get("max_bending_stress")
-                    .and_then(|m| m.as_f64())
-                    .unwrap_or(0.0);
-                vec![m; points.len()]
-            }
-        };
+    results
+        .rods
+        .into_iter()
+        .enumerate()
+        .map(|(i, r)| plot_rod(i, r).map_err(|e| format!("{file}: {e}")))
+        .collect()
+}
+
+fn plot_rod(i: usize, r: RodJson) -> Result<PlotRod, String> {
+    let n = r.points.len();
+    if n < 2 {
+        return Err(format!("rods[{i}].points: needs at least 2 points"));
+    }
+    let stress = if r.bending_stress.is_empty() {
+        vec![r.max_bending_stress; n]
+    } else if r.bending_stress.len() != n {
+        return Err(format!(
+            "rods[{i}].bending_stress: {} values for {n} points",
+            r.bending_stress.len()
+        ));
+    } else if let Some(k) = r.bending_stress.iter().position(|x| !x.is_finite()) {
+        return Err(format!(
+            "rods[{i}].bending_stress[{k}]: not a finite number"
+        ));
+    } else {
+        r.bending_stress
+    };
+    Ok(PlotRod {
+        name: r.name,
         // Closed rods have as many edges (twist angles) as nodes.
-        let closed = r
-            .get("twist")
-            .and_then(|t| t.as_array())
-            .is_some_and(|t| t.len() == points.len());
-        out.push(PlotRod {
-            name,
-            points,
-            stress,
-            closed,
-        });
-    }
-    Ok(out)
+        closed: r.twist.len() == n,
+        points: r.points,
+        stress,
+    })
 }
 
 /// Viridis, sampled at five stops.

@@ -10,7 +10,7 @@ use crate::network::equilibrium::{
 use crate::network::model::EnergyParts;
 use crate::solver::NewtonReport;
 
-#[derive(Debug, Clone, Serialize, Deserialize)]
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
 pub struct EnergyJson {
     pub total: f64,
     pub stretch: f64,
@@ -33,7 +33,10 @@ impl From<EnergyParts> for EnergyJson {
     }
 }
 
-#[derive(Debug, Clone, Serialize, Deserialize)]
+/// Fields beyond the contract's (`name`, `points`, `twist`) default when read back, so that any
+/// results JSON that keeps the contract can be read.
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
+#[serde(default)]
 pub struct RodJson {
     pub name: String,
     /// Every node after subdivision, m.
@@ -79,7 +82,7 @@ pub struct TargetJson {
     pub rms_net_distance: Option<f64>,
 }
 
-#[derive(Debug, Clone, Serialize, Deserialize)]
+#[derive(Debug, Clone, Default, Serialize, Deserialize)]
 pub struct SolverJson {
     pub factorizations: usize,
     pub regularized_iterations: usize,
@@ -139,25 +142,38 @@ pub struct KktJson {
 
 #[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct Results {
+    #[serde(default)]
     pub converged: bool,
+    #[serde(default)]
     pub iterations: usize,
+    #[serde(default)]
     pub load_steps: usize,
+    #[serde(default)]
     pub residual: f64,
+    #[serde(default)]
     pub seconds: f64,
+    #[serde(default)]
     pub energy: EnergyJson,
     pub rods: Vec<RodJson>,
+    #[serde(default)]
     pub joints: Vec<JointJson>,
+    #[serde(default)]
     pub reactions: Vec<ReactionJson>,
     #[serde(skip_serializing_if = "Option::is_none")]
+    #[serde(default)]
     pub target: Option<TargetJson>,
     /// Scenes with a `reference` only.
     #[serde(skip_serializing_if = "Option::is_none")]
+    #[serde(default)]
     pub reference: Option<ReferenceJson>,
+    #[serde(default)]
     pub solver: SolverJson,
     /// Scenes with obstacles or bounds only.
     #[serde(skip_serializing_if = "Option::is_none")]
+    #[serde(default)]
     pub contacts: Option<Vec<ContactJson>>,
     #[serde(skip_serializing_if = "Option::is_none")]
+    #[serde(default)]
     pub kkt: Option<KktJson>,
 }
 
