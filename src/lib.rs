@@ -9,7 +9,6 @@
 // mathematics without making it safer.
 #![allow(clippy::needless_range_loop)]
 
-pub mod analytic;
 pub mod cli;
 pub mod energy;
 pub mod gridshell;

@@ -2,10 +2,12 @@
 //! answers (bounds are the measured errors with 20 % margin), and bad contact input is rejected
 //! with a located message (exit 2).
 
+mod support;
+
 use std::process::Command;
 
-use rodnet::analytic::{cantilever_tip_load, heavy_elastica_lifted_end};
 use rodnet::pipeline::{settings_of, solve_scene, Solution};
+use support::{cantilever_tip_load, heavy_elastica_lifted_end};
 
 fn run(name: &str) -> Solution {
     let (s, _) =

@@ -1,17 +1,18 @@
 //! Contact and bounds against mechanics: a heavy rod lifted off a frictionless floor (small
-//! deflection theory and the shooting solution of `rodnet::analytic`), a rod pressed onto a
+//! deflection theory and the shooting solution in `tests/support/heavy.rs`), a rod pressed onto a
 //! sphere and onto a cylinder (global equilibrium of loads, support reactions and contact
 //! forces), and a bound that is never active (iterates unchanged). Every test states the errors
 //! it measured; run with `--nocapture` to see the tables.
 
 mod common;
+mod support;
 
 use std::f64::consts::PI;
 
 use common::*;
-use rodnet::analytic::{heavy_elastica_lifted_end, heavy_elastica_small_deflection, HeavyElastica};
 use rodnet::pipeline::{settings_of, solve_scene, Solution};
 use rodnet::scene::types::*;
+use support::{heavy_elastica_lifted_end, heavy_elastica_small_deflection, HeavyElastica};
 
 const G: f64 = 9.81;
 

@@ -2,9 +2,9 @@
 //! closed loops, joint kinds and their limits. Each test states its reference and measured error.
 
 mod common;
+mod support;
 
 use common::*;
-use rodnet::analytic;
 use rodnet::pipeline::{settings_of, solve_scene, Solution};
 use rodnet::scene::types::*;
 
@@ -80,7 +80,7 @@ fn gj_of(m: &Material) -> f64 {
 #[test]
 fn l_frame_rigid_joint() {
     let gj = gj_of(&material_ei(1.0, 1e-2, 0.3));
-    let exact = analytic::l_frame_tip_deflection(1.0, 0.7, 1.0, gj, 1e-5);
+    let exact = support::l_frame_tip_deflection(1.0, 0.7, 1.0, gj, 1e-5);
     let f = [20, 40].map(|n| {
         solve(&l_frame(n, JointKind::Rigid)).results.rods[1]
             .points
@@ -97,7 +97,7 @@ fn l_frame_rigid_joint() {
 fn l_frame_elastic_joint_adds_its_compliance() {
     let gj = gj_of(&material_ei(1.0, 1e-2, 0.3));
     let k = 0.5;
-    let exact = analytic::l_frame_tip_deflection(1.0, 0.7, 1.0, gj, 1e-5) + 1e-5 * 0.49 / k;
+    let exact = support::l_frame_tip_deflection(1.0, 0.7, 1.0, gj, 1e-5) + 1e-5 * 0.49 / k;
     let f = [20, 40].map(|n| {
         solve(&l_frame(n, elastic(2.0 * k))).results.rods[1]
             .points

@@ -3,12 +3,12 @@
 //! the physics being checked.
 
 mod common;
+mod support;
 
 use common::*;
-use rodnet::analytic;
 use rodnet::network::assembly::Assembly;
-use rodnet::network::build::build;
 use rodnet::pipeline::{settings_of, solve_scene};
+use rodnet::network::build::build;
 use rodnet::scene::types::*;
 
 fn tip(s: &Scene) -> ([f64; 3], rodnet::pipeline::Solution) {
@@ -41,7 +41,7 @@ fn cantilever_small_load_matches_euler_bernoulli() {
 /// error falls as 1/N²: the ratio of successive errors must approach 4.
 #[test]
 fn cantilever_large_load_converges_quadratically() {
-    let reference = analytic::cantilever_tip_load(2.0);
+    let reference = support::cantilever_tip_load(2.0);
     assert!((reference.deflection - 0.49345748).abs() < 5e-9);
     let mut table = vec![];
     for n in [10, 20, 40, 80] {
@@ -69,7 +69,7 @@ fn cantilever_large_load_converges_quadratically() {
 /// is a saddle; the solver must leave it and find the buckled state.
 #[test]
 fn euler_postbuckled_strut() {
-    let reference = analytic::euler_buckling_postbuckled(0.1);
+    let reference = support::euler_buckling_postbuckled(0.1);
     let mut errs = vec![];
     let mut vals = vec![];
     for n in [40, 80] {
@@ -126,7 +126,7 @@ fn euler_postbuckled_strut() {
 /// load of N = 40 is within 1e-3 of π²EI/L².)
 #[test]
 fn euler_critical_load_brackets_buckling() {
-    let pc = analytic::euler_critical_load(1.0, 1.0);
+    let pc = support::euler_critical_load(1.0, 1.0);
     let ea = 4.0 / 1e-6; // E·πr² with EI = 1, r = 1e-3
     for (factor, buckles) in [(0.97, false), (1.03, true)] {
         let mut s = scene(
@@ -184,7 +184,7 @@ fn uniform_twist_is_exact_for_any_n() {
         s.solver.load_steps = 3;
         let sol = solve_scene(&s, &settings_of(&s)).unwrap();
         assert!(sol.report.converged);
-        let expected = analytic::uniform_twist_torque(gj, phi, 2.0);
+        let expected = support::uniform_twist_torque(gj, phi, 2.0);
         let m0 = sol.results.reactions[0].moment[0];
         let m1 = sol.results.reactions[1].moment[0];
         println!("N = {n}: torque {m1:.12e}, expected {expected:.12e}");

@@ -3,10 +3,11 @@
 //! Michell's instability. Every case loads a scene from `networks/extreme/` and checks physics
 //! against an analytic answer; docs/stiff.md has the measured numbers.
 
+mod support;
+
 use std::path::Path;
 use std::time::Instant;
 
-use rodnet::analytic;
 use rodnet::pipeline::{settings_of, solve_scene, Solution};
 use rodnet::scene::types::*;
 
@@ -112,7 +113,7 @@ fn extensible_cantilever_tip(load: f64, eta: f64) -> [f64; 2] {
 #[test]
 fn slenderness_sweep_cantilever() {
     let load_factor = 2.0;
-    let inext = analytic::cantilever_tip_load(load_factor);
+    let inext = support::cantilever_tip_load(load_factor);
     let check = extensible_cantilever_tip(load_factor, 0.0);
     assert!(
         (check[0] - (1.0 - inext.shortening)).abs() < 1e-12,
@@ -395,7 +396,7 @@ fn nitinol_l_frame_on_soft_joint() {
     };
     let k = c.young_modulus * std::f64::consts::PI * c.diameter.powi(4) / (64.0 * c.height);
     let (a, b, p) = (0.06, 0.04, 1e-6);
-    let rigid = analytic::l_frame_tip_deflection(a, b, ei, gj, p);
+    let rigid = support::l_frame_tip_deflection(a, b, ei, gj, p);
     let exact = rigid + 2.0 * p * b * b / k;
     println!(
         "EI = {ei:.4e} N·m², k = {k:.4e} N·m/rad, E_rod/E_joint = {:.2e}; rigid frame \
@@ -694,7 +695,7 @@ fn ten_turns_of_twist() {
     let gj = m.shear_modulus.unwrap() * j;
     let (l, phi) = (1.0, 20.0 * PI);
     let mc = greenhill_clamped(ei, l);
-    let torque = analytic::uniform_twist_torque(gj, phi, l);
+    let torque = support::uniform_twist_torque(gj, phi, l);
     println!(
         "GJ/EI = {:.3}, M_c L/EI = {:.6} = {:.4} π, torque / M_c = {:.3}",
         gj / ei,
@@ -771,7 +772,7 @@ fn michell_twisted_ring() {
     let m = &base.materials["rod"];
     let ei = ei_of(m);
     let gj = 2.0 * m.shear_modulus.unwrap() / m.young_modulus * ei;
-    let theta_c = analytic::michell_critical_twist(ei, gj);
+    let theta_c = support::michell_critical_twist(ei, gj);
     let l = 1.0;
     // The scene file is the 0.95 Θc case.
     let (a, b) = (

@@ -2,6 +2,8 @@
 //! cantilever against its analytic reference and against Richardson extrapolation, the CSV and
 //! the plot, levels that do not converge, the gridshell variant, and refused input.
 
+mod support;
+
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
 
@@ -77,7 +79,7 @@ fn observed_order(stdout: &str) -> f64 {
 fn cantilever_reference_is_the_elastica() {
     let (scene, _) = rodnet::scene::load(Path::new(CANTILEVER)).unwrap();
     let r = scene.reference.expect("the scene declares its reference");
-    let tip = rodnet::analytic::cantilever_tip_load(2.0);
+    let tip = support::cantilever_tip_load(2.0);
     let exact = [1.0 - tip.shortening, -tip.deflection, 0.0];
     for (got, want) in r.position.iter().zip(exact) {
         assert!((got - want).abs() < 1e-15, "{:?}", r.position);
