@@ -1,4 +1,4 @@
-//! The `rodnet` command line (see docs/cli.md and ../shared/contract.md).
+//! The `rodnet` command line (see docs/cli.md and docs/contract.md).
 
 mod network;
 mod plot;

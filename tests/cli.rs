@@ -1,4 +1,4 @@
-//! The outside contract (../shared/contract.md) through the binary: exit codes, results JSON
+//! The outside contract (docs/contract.md) through the binary: exit codes, results JSON
 //! keys, OBJ and CSV outputs, and located errors for bad scenes.
 
 use std::path::PathBuf;

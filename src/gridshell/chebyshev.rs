@@ -32,35 +32,27 @@
 //! requested `σ`. Every query goes through that grid, so `crossing`, `point` and `rod_points`
 //! agree bit for bit.
 //!
-//! The compass construction on a fine grid was implemented as an independent check (see the
-//! tests): it converges at order 2 (measured exponents 2.000 for `h = a/8 … a/256`, n = 12)
-//! before the fold, and with two Richardson steps on `h = a/8, a/16, a/32` it reproduces the
-//! crossings of this module to 1.7e-12. It is not used for the net itself because it breaks
-//! down past the fold line `uv = 1.8616 R²` (where `ω = 0` and its cells degenerate: refining
-//! the grid there makes it drift by up to 2e-2), whereas the ODE is smooth through the fold,
-//! so `point` is accurate over the whole square `|u|, |v| ≤ 2R`. The gridshell never reaches
-//! the fold: `uv` at the rod ends is at most 0.962 R² for every n tried (1 to 200).
+//! The compass construction on a fine grid is kept as an independent check (see the tests): it
+//! is second order before the fold, so Richardson extrapolation over three grids reproduces
+//! the crossings of this module. It is not used for the net itself because it breaks down past
+//! the fold line `uv = 1.8616 R²` (where `ω = 0` and its cells degenerate), whereas the ODE is
+//! smooth through the fold, so `point` is accurate over the whole square `|u|, |v| ≤ 2R`. The
+//! gridshell stays inside the fold: `uv` at the rod ends is below R² for every allowed n.
 //!
-//! # Accuracy (measured, R = 1, release build)
+//! # Accuracy
 //!
-//! * `f` and `f'` against a 50-digit reference (mpmath; global series for `s ≤ 2.75`, 80-term
-//!   re-expansions beyond): max error 2.2e-16 on `[0, 4.25]`.
-//! * Integration order: with `k` extrapolation levels the global error goes as `step^(2k)`;
-//!   measured exponents (n = 12, step 0.4 → 0.2 → 0.1 → 0.05, against a step-0.02 reference):
-//!   5.1, 5.8, 5.9 for `k = 3` and 6.9, 7.7 for `k = 4`, until round-off (≈1e-13) takes over.
-//! * Default scheme (step 0.2, 6 levels) against step 0.1 with 8 levels (≈2^12 times smaller
-//!   truncation error): 3.3e-14 at crossings and half-lengths, 5.8e-14 for `point` over
-//!   `|u|, |v| ≤ 2` fold included; all high-order schemes tried (steps 0.1–0.4, 6–11 levels)
-//!   agree within 1.8e-13, mostly round-off of the deepest extrapolations. Positions and
-//!   half-lengths are therefore good to 1e-13 R.
+//! * `f` and `f'` are exact to round-off on `[0, 4.25]` (checked against a high-precision
+//!   reference in the tests).
+//! * With `k` extrapolation levels the integration error goes as `step^(2k)`; the default
+//!   scheme (step 0.2, 6 levels) leaves it below round-off of the deepest extrapolations, so
+//!   positions and half-lengths are good to about 1e-13 R.
 //! * `L_k`: Newton on `z` along the rod (quadratic, stops once the step is ≤ 1e-15), so its
-//!   error is the integration error above; `z(point(L_k, c_k))` is ≤ 4.2e-15 R.
+//!   error is the integration error above.
 //! * n = 12, R = 1: central rods `L_6 = L_7 = 1.55938886587633` (`half_lengths[5]`,
 //!   `half_lengths[6]`), outermost `L_1 = L_12 = 0.58546225448273`; 112 crossings inside (the
 //!   closest to the equator has `|z| = 0.014`).
 //!
-//! Construction time (release, one core of an AMD EPYC): n = 8: 0.07 ms, n = 12: 0.11 ms,
-//! n = 16: 0.16 ms. One `point` call costs about 6.5 µs.
+//! docs/gridshell.md ("Accuracy of the net") has the measured errors, orders and costs.
 //!
 //! # Conventions
 //!
@@ -693,10 +685,9 @@ mod tests {
 
     #[test]
     fn crossings_are_one_spacing_apart_along_every_rod() {
-        // Measured worst error: 6e-15 (n = 12, R = 1). The polyline error left after
-        // Richardson is O(m⁻⁶), negligible; what remains is the position error (≤ 6e-14):
-        // along a smooth error field the chord sum changes by about the error at the two
-        // ends, so ≤ 1.2e-13, times ≈ 2 for the Richardson weights.
+        // The polyline error left after Richardson is O(m⁻⁶), negligible; what remains is the
+        // position error (≤ 6e-14): along a smooth error field the chord sum changes by about
+        // the error at the two ends, so ≤ 1.2e-13, times ≈ 2 for the Richardson weights.
         let net = HemisphereNet::new(1.0, 12);
         let mut worst: f64 = 0.0;
         for k in 0..12 {
@@ -803,8 +794,7 @@ mod tests {
         // The interior angles are ω at (u0,v0) and (u1,v1), where both edges leave along
         // +r_u, +r_v or −r_u, −r_v, and π − ω at the other two corners, so this is
         // K·Area = 2π − Σ interior angles (the opposite sign of a geodesic polygon's excess).
-        // Measured worst mismatch: 4e-16 on the cells (area 0.015), 7e-14 on the large quad
-        // (area 1.36). Bound: position error (≤ 6e-14) times the perimeter (≤ 5), times ≈ 2
+        // Bound: position error (≤ 6e-14) times the perimeter (≤ 5), times ≈ 2
         // for the Richardson weights, plus 4 angle errors of 2e-16: ≤ 6e-13.
         let net = HemisphereNet::new(1.0, 12);
         let c = &net.offsets;
@@ -834,8 +824,7 @@ mod tests {
     fn angle_matches_the_geometry() {
         // Central differences with one Richardson step (δ = 1e-3): truncation ~δ⁴|r⁽⁵⁾|/30
         // ≈ 1e-13, but the position error (≤ 6e-14, not smooth across grid nodes) is amplified
-        // by ≈ 1.5/δ, so up to ≈ 1e-10. Measured worst: 4.2e-12 for the angle and 4.7e-12 for
-        // |r_u| − 1, including points past the fold.
+        // by ≈ 1.5/δ, so up to ≈ 1e-10, including points past the fold.
         let net = HemisphereNet::new(1.0, 12);
         let d = 1e-3;
         let derivative = |f: &dyn Fn(f64) -> Vec3| -> Vec3 {
@@ -906,10 +895,9 @@ mod tests {
 
     #[test]
     fn independent_compass_construction_agrees() {
-        // Measured: the compass error is second order (log2 of the error ratio 2.0002; 3.2e-6
-        // at h = a/32) and after two Richardson steps over h = a/8, a/16, a/32 the mismatch is
-        // 1.7e-12 at the crossings; the next term of the expansion and the compass
-        // round-off (which grows with the cell count) are both of that order.
+        // The compass error is second order, so two Richardson steps over h = a/8, a/16, a/32
+        // leave the next term of the expansion and the compass round-off (which grows with the
+        // cell count), both below the tolerance.
         let n = 12;
         let net = HemisphereNet::new(1.0, n);
         let a = PI / (n + 1) as f64;
@@ -979,8 +967,8 @@ mod tests {
     #[test]
     fn integration_error_is_below_the_stated_tolerance() {
         // The scheme with half the step and two more levels is ~2^12 times more accurate in
-        // truncation, so the difference measures the default's error: 3.3e-14 at crossings and
-        // half-lengths, 5.8e-14 over |u|, |v| ≤ 2 (fold included).
+        // truncation, so the difference measures the default's error, at crossings and
+        // half-lengths and over |u|, |v| ≤ 2 (fold included).
         let net = HemisphereNet::new(1.0, 12);
         let fine = HemisphereNet::with_scheme(
             1.0,

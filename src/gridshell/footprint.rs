@@ -246,7 +246,7 @@ pub fn footprint(spec: &HemisphereSpec) -> Footprint {
 /// segments can be much shorter (at n = 12 the last crossing before the equator is 0.094
 /// spacings from the rod end): splitting them into as many edges as a full spacing would make
 /// edges a tenth as long, with ten times the round-off floor of the residual (stretching
-/// stiffness over edge length), which stalls Newton at subdivide 16.
+/// stiffness over edge length), enough to stall Newton at fine subdivisions (docs/gridshell.md).
 fn subdivided(keys: &[[f64; 3]], per_spacing: usize, spacing: f64) -> (Vec<[f64; 3]>, Vec<usize>) {
     let mut points = Vec::new();
     let mut at = Vec::with_capacity(keys.len());

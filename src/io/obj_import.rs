@@ -5,7 +5,7 @@
 //! the same branch as `f`, so a polyline comes back as a polygon (`l 1 2 3` is indistinguishable
 //! from a triangle, and `triangulate` fans it), 2-vertex lines are dropped by its GPU options,
 //! and positions are re-indexed per object, which loses the vertices that rods share
-//! (measured, see ../shared/notes-dependencies.md §7). Polylines need the raw element lists.
+//! (checked when the dependencies were chosen). Polylines need the raw element lists.
 //!
 //! Tools write networks in two ways, and both are read:
 //! - one `l` element per curve (Rhino, most CAD exporters), each curve usually in its own `o`

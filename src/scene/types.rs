@@ -1,4 +1,4 @@
-//! The RON scene format (see `docs/scene-format.md`). Names follow `../shared/contract.md`
+//! The RON scene format (see `docs/scene-format.md`). Names follow `docs/contract.md`
 //! exactly; every type rejects unknown fields so that typos are reported, not ignored.
 
 use std::collections::BTreeMap;

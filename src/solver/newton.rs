@@ -26,8 +26,8 @@ const ATTEMPT_CAP: usize = 8;
 /// Smallest continuation increment, as a fraction of the whole load path.
 const MIN_INCREMENT: f64 = 1e-5;
 /// Residual to which intermediate continuation sub-steps are converged (or the solve's tolerance
-/// if looser): their states only start the next sub-step, and a few digits are enough for that.
-/// Iterating them to round-off cost the gridshell's form finding about a third of its iterations.
+/// if looser): their states only start the next sub-step, and a few digits are enough for that;
+/// iterating them to round-off would spend iterations on states that are discarded.
 pub const INTERMEDIATE_TOLERANCE: f64 = 1e-6;
 /// Relative residual below which a full Newton step on a positive definite Hessian may be
 /// accepted for reducing the residual when the Armijo test cannot resolve the energy change.
@@ -76,7 +76,7 @@ pub fn solve<P: NewtonProblem>(p: &mut P, s: &NewtonSettings) -> NewtonReport {
         },
     };
     // Adaptive continuation: each user load step is reached through sub-steps whose increment
-    // halves on failure and doubles after easy convergence; a secant predictor from the last
+    // is quartered on failure and doubles after easy convergence; a secant predictor from the last
     // two converged states starts each sub-step.
     p.unknown_scales(&mut st.scales);
     for (w, s) in st.weights.iter_mut().zip(&st.scales) {
@@ -241,9 +241,8 @@ struct Newton {
     /// weights 1/s²: regularizing H + τ·diag(1/s²) is regularizing the Hessian of the
     /// dimensionless unknowns q/s by τ·I, so a scene and its copy scaled in length or modulus
     /// take the same steps. (With a uniform shift, a length scale λ multiplies the position
-    /// rows of H by λ and the angle rows by λ³, and the same relative shift meant different
-    /// damping: the ring of `networks/extreme/ring.ron` took 426 iterations at 1 m and 207 at
-    /// 1 µm.)
+    /// rows of H by λ and the angle rows by λ³, so the same relative shift would damp angles
+    /// and positions differently at every scale; docs/stiff.md section 3.)
     scales: Vec<f64>,
     weights: Vec<f64>,
     shift_memory: f64,
@@ -437,7 +436,8 @@ impl Newton {
     /// linear response to the increment, δ = −H⁻¹ (g(λ_next) − g(λ)) at fixed free unknowns, so
     /// that prescribed ends do not start by crushing their first edges. Kept only if it lowers
     /// the energy at `next`. Later sub-steps use the secant through two equilibria instead (a
-    /// tangent predictor there cost the cantilever iterations; docs/design.md).
+    /// tangent predictor there leads a strut shortened past buckling onto its straight saddle;
+    /// docs/design.md).
     fn tangent_predict<P: NewtonProblem>(&mut self, p: &mut P, lam: f64, next: f64) {
         let n = self.g.len();
         if self.qp.is_some() {
@@ -501,10 +501,9 @@ impl Newton {
 
     /// Factors H + τI with the smallest τ of the sequence 0, τ₀, 10τ₀, … that succeeds.
     ///
-    /// Skipping the unshifted attempt while it keeps failing was tried: it saves a
-    /// factorization per indefinite iteration, but the shift then lingers (it decays ×10 per
-    /// iteration) and turns Newton's final quadratic convergence linear (gridshell cap steps:
-    /// 8 iterations instead of 5).
+    /// The unshifted attempt is made at every iteration, even while it keeps failing: skipping
+    /// it would save a factorization per indefinite iteration, but the shift would then linger
+    /// (it decays ×10 per iteration) and turn Newton's final quadratic convergence linear.
     fn factor_regularized(&mut self) -> Option<f64> {
         let ts = Instant::now();
         let r = self.factor_regularized_inner();
@@ -613,12 +612,11 @@ impl Newton {
 /// positive definite Hessian near convergence. If the full step then fails the Armijo test, it
 /// is still taken when it halves the residual. The energy's round-off is not a few ulps of the
 /// total energy when stiff terms nearly cancel: a stretch energy ½EA(|e|/ē − 1)²ē carries an
-/// error of about |N|·ε·X per edge (N the axial force, X the coordinates' size), 1e-18 J against
-/// a total of 3e-6 J in `networks/extreme/nitinol_cross.ron`. There the predicted decrease
-/// (1e-20 J) drowned in that noise, backtracking accepted whatever fraction of the step the
-/// noise happened to favour, and Newton crept at a relative residual of 2e-7, 100 times above
-/// the round-off floor, until the sub-step was retried; how many iterations that took depended
-/// on the last bits of the data (a scene and its copy with E × 1e-3 took 58 and 22 iterations).
+/// error of about |N|·ε·X per edge (N the axial force, X the coordinates' size). When the
+/// predicted decrease drowns in that noise, backtracking accepts whatever fraction of the step
+/// the noise happens to favour and Newton creeps above the round-off floor, for a number of
+/// iterations that depends on the last bits of the data; the residual is the reliable judge
+/// there (docs/stiff.md section 3, `networks/extreme/nitinol_cross.ron`).
 #[allow(clippy::too_many_arguments)]
 fn line_search<P: NewtonProblem>(
     p: &mut P,

@@ -1,8 +1,8 @@
 //! Fill-reducing orderings for the sparse Cholesky factorization.
 //!
 //! faer offers AMD (and custom permutations). On the 2-D meshes that rod networks and gridshells
-//! form, AMD leaves much more fill than nested dissection (../shared/notes-dependencies.md: 4.5×
-//! the non-zeros and 17× the factorization time on a 1e5-unknown grid), and faer has no METIS.
+//! form, AMD can leave much more fill than nested dissection (docs/performance.md), and faer has
+//! no METIS.
 //! rodnet knows where each unknown sits in space, so it dissects geometrically: split the
 //! unknowns at the median of their longest bounding-box axis, take as separator the unknowns of
 //! the smaller boundary (those with a neighbour on the other side), order both halves
@@ -26,11 +26,9 @@ pub enum Ordering {
 /// would cost more than it could save).
 pub const AUTO_MIN_UNKNOWNS: usize = 20_000;
 
-/// Measured on hemispherical gridshells (docs/performance.md): where the dissection's factor has
-/// 0.76–0.79 of AMD's non-zeros its factorization is still slower (rods between crossings are
-/// chains, which AMD orders well; n = 24, K = 32: 66 against 23 ms), where it has about half it
-/// is twice as fast (n = 48, K = 8, 1.0e5 unknowns: 5.8M against 11.0M non-zeros, 200 against
-/// 397 ms).
+/// The dissection pays only when it saves much fill: rods between crossings are chains, which
+/// AMD orders well, so a dissection with somewhat less fill can still factor more slowly. The
+/// threshold separates the gridshell cases measured in docs/performance.md (nested dissection).
 pub const AUTO_FILL_RATIO: f64 = 0.6;
 
 /// Geometric nested dissection of the graph of `pairs` (upper-triangle (row, column) entries,

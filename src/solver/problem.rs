@@ -1,5 +1,5 @@
 //! The one generic Newton problem: energy, gradient and Hessian over free unknowns, a way to
-//! try and accept steps, and a continuation parameter. Rods, networks, joints and (later)
+//! try and accept steps, and a continuation parameter. Rods, networks, joints and inequality
 //! constraints all plug in through this interface.
 
 pub trait NewtonProblem {

@@ -132,8 +132,8 @@ fn settings() -> DefaultSettings<f64> {
     // static regularization than the default 1e-8 because the τ-shifted Hessian's zero modes
     // (rigid spins, free rotations about a pin) sit at 1e-10 of its unit diagonal. Clarabel's
     // own equilibration is off: the Jacobi scaling below already gives P a unit diagonal, and
-    // with it on, steps after a continuation predictor stopped with InsufficientProgress (seen
-    // on the lifted rod with r = 0.005, N = 40, h = 1).
+    // rescaling on top of it can leave QPs after a continuation predictor stopping with
+    // InsufficientProgress (docs/design.md).
     DefaultSettingsBuilder::default()
         .verbose(false)
         .presolve_enable(false)

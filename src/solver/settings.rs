@@ -95,7 +95,8 @@ pub struct NewtonReport {
     pub substeps: usize,
     /// Sub-steps retried with a smaller increment.
     pub retries: usize,
-    /// Relative residual that round-off alone produces (convergence uses max(tolerance, floor)).
+    /// Relative residual that round-off alone produces (below it, the solve stops once round-off
+    /// stalls Newton).
     pub residual_floor: f64,
     /// Iterations per load step.
     pub step_iterations: Vec<usize>,
