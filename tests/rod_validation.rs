@@ -7,8 +7,8 @@ mod support;
 
 use common::*;
 use rodnet::network::assembly::Assembly;
-use rodnet::pipeline::{settings_of, solve_scene};
 use rodnet::network::build::build;
+use rodnet::pipeline::{settings_of, solve_scene};
 use rodnet::scene::types::*;
 
 fn tip(s: &Scene) -> ([f64; 3], rodnet::pipeline::Solution) {
