@@ -1,7 +1,6 @@
 //! What a built network knows by name: its rods (nodes and edges of each, section, material),
 //! supports and joints. Results, exports and studies name things through these.
 
-use crate::network::model::Model;
 use crate::rod::section::{Section, Stiffness};
 
 /// One rod of the built network.
@@ -40,30 +39,4 @@ pub struct JointInfo {
     pub name: String,
     /// The shared node, or the joint's centre node for translationally elastic joints.
     pub node: usize,
-}
-
-/// A built network: the Newton model plus what the results need to name things.
-#[derive(Debug, Clone)]
-pub struct Network {
-    pub model: Model,
-    pub rods: Vec<RodInfo>,
-    pub supports: Vec<SupportInfo>,
-    pub joints: Vec<JointInfo>,
-}
-
-impl Network {
-    pub fn n_nodes(&self) -> usize {
-        self.model.layout.n_nodes()
-    }
-
-    /// The rod named `name`.
-    pub fn rod(&self, name: &str) -> Option<&RodInfo> {
-        self.rods.iter().find(|r| r.name == name)
-    }
-
-    /// Current position of input vertex `vertex` of rod `rod`.
-    pub fn vertex_position(&self, rod: &str, vertex: usize) -> Option<[f64; 3]> {
-        let n = self.rod(rod)?.vertex_node(vertex)?;
-        Some(self.model.position(n))
-    }
 }

@@ -15,6 +15,32 @@ pub mod projection;
 pub mod rest;
 
 pub use build::build;
-pub use info::{JointInfo, Network, RodInfo, SupportInfo};
+pub use info::{JointInfo, RodInfo, SupportInfo};
 pub use model::Model;
 pub use problem::{solve, NetworkProblem};
+
+/// A built network: the Newton model plus what the results need to name things.
+#[derive(Debug, Clone)]
+pub struct Network {
+    pub model: Model,
+    pub rods: Vec<RodInfo>,
+    pub supports: Vec<SupportInfo>,
+    pub joints: Vec<JointInfo>,
+}
+
+impl Network {
+    pub fn n_nodes(&self) -> usize {
+        self.model.layout.n_nodes()
+    }
+
+    /// The rod named `name`.
+    pub fn rod(&self, name: &str) -> Option<&RodInfo> {
+        self.rods.iter().find(|r| r.name == name)
+    }
+
+    /// Current position of input vertex `vertex` of rod `rod`.
+    pub fn vertex_position(&self, rod: &str, vertex: usize) -> Option<[f64; 3]> {
+        let n = self.rod(rod)?.vertex_node(vertex)?;
+        Some(self.model.position(n))
+    }
+}

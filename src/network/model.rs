@@ -1,7 +1,7 @@
 //! The Newton problem of a network and nothing else: the variable layout, the state, the energy
 //! terms, which variables are free, the prescribed motions of the continuation, the scales that
 //! make residuals relative, and the inequality constraints. Assembly is in
-//! [`super::assembly`]; caches of a solve live in the adapter ([`super::problem`]).
+//! `assembly.rs`; caches of a solve live in the adapter (`problem.rs`).
 
 use rayon::prelude::*;
 

@@ -16,7 +16,8 @@ mod supports;
 mod terms;
 
 use crate::network::contact::Contact;
-use crate::network::info::{JointInfo, Network};
+use crate::network::info::JointInfo;
+use crate::network::Network;
 use crate::network::model::{Model, ModelParts, Scales};
 use crate::scene::{FieldError, Scene};
 use crate::variables::{DofLayout, FrameRef, State};

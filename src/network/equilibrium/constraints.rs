@@ -4,7 +4,7 @@
 
 use crate::math::vec::scalef;
 use crate::network::contact::{Contact, Source};
-use crate::network::info::Network;
+use crate::network::Network;
 use crate::solver::ConstraintReport;
 
 /// The force one active constraint exerts on a node.

@@ -14,7 +14,7 @@ use serde::{Deserialize, Serialize};
 use crate::energy::registry::{TermVisitor, Terms};
 use crate::energy::Term;
 use crate::network::assembly::Assembly;
-use crate::network::info::Network;
+use crate::network::Network;
 use crate::network::model::EnergyParts;
 use crate::scene::Scene;
 use crate::solver::NewtonReport;

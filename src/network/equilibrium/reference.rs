@@ -2,7 +2,7 @@
 //! computed equilibrium.
 
 use crate::math::vec::{norm, sub};
-use crate::network::info::Network;
+use crate::network::Network;
 use crate::scene::Scene;
 
 #[derive(Debug, Clone, PartialEq)]

@@ -5,7 +5,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::energy::registry::TermVisitor;
 use crate::energy::{Category, Term};
-use crate::network::info::Network;
+use crate::network::Network;
 use crate::variables::State;
 
 /// Stretching, bending and twisting energy stored in one rod, J. Bending and twisting include

@@ -7,7 +7,8 @@
 
 use crate::energy::{frame_twist::FrameTwist, twist::Twist, Term};
 use crate::math::vec::{dot, norm, sub};
-use crate::network::info::{Network, RodInfo};
+use crate::network::info::RodInfo;
+use crate::network::Network;
 use crate::rod::section::Section;
 
 /// Bending at one rod node.

@@ -1,7 +1,7 @@
 //! The equilibrium against the scene's target shape.
 
 use crate::math::vec::{norm, sub};
-use crate::network::info::Network;
+use crate::network::Network;
 use crate::scene::types::Target;
 
 #[derive(Debug, Clone, Copy, PartialEq)]
