@@ -2,7 +2,6 @@
 pub mod atomic;
 pub mod csv;
 pub mod obj;
-pub mod obj_import;
 pub mod plot;
 pub mod reference;
 pub mod results;
