@@ -6,6 +6,7 @@
 //! so the tracker lives in a process-wide mutex. One solve runs at a time per process; a second
 //! `begin` simply replaces the tracker.
 
+use std::io::IsTerminal;
 use std::sync::Mutex;
 use std::time::{Duration, Instant};
 
@@ -13,6 +14,11 @@ use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 
 /// Short solves finish before the bar would be readable; they print only the summary line.
 const SHOW_AFTER: Duration = Duration::from_millis(400);
+
+/// Whether to draw the bar: not with --quiet, and only on a terminal.
+pub fn show_progress(quiet: bool) -> bool {
+    !quiet && std::io::stderr().is_terminal()
+}
 
 /// One progress report of the solver.
 #[derive(Debug, Clone, Copy, PartialEq)]
