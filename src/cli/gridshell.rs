@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 use clap::Args;
 
 use super::network::JointArg;
-use super::output::{atomic_write, bad, EXIT_NOT_CONVERGED, EXIT_OK};
+use super::output::{atomic_write, bad, diagnostic, EXIT_NOT_CONVERGED, EXIT_OK};
 use super::progress::{self, show_progress};
 use crate::gridshell::footprint::{self, HemisphereSpec, JointChoice};
 use crate::gridshell::formfind::{FormPath, DEFAULT_START_CAP};
@@ -280,11 +280,7 @@ pub(super) fn run(a: HemisphereArgs) -> i32 {
         Err(e) => return bad(invalid(&e)),
     };
     let r = &run.results;
-    let diagnostic = r
-        .solver
-        .message
-        .as_deref()
-        .unwrap_or("no further diagnostic");
+    let diagnostic = diagnostic(&r.solver.message);
     if !r.all_finite() {
         eprintln!(
             "error: the form finding produced non-finite values ({diagnostic}); no results written"

@@ -16,6 +16,11 @@ pub(super) fn bad(msg: impl std::fmt::Display) -> i32 {
     EXIT_BAD_INPUT
 }
 
+/// A solver's message for a failure report.
+pub(super) fn diagnostic(message: &Option<String>) -> &str {
+    message.as_deref().unwrap_or("no further diagnostic")
+}
+
 pub(super) fn atomic_write(p: &Path, bytes: &[u8]) -> Result<(), String> {
     atomic::write(p, bytes).map_err(|e| format!("cannot write {}: {e}", p.display()))
 }

@@ -3,7 +3,7 @@
 use std::path::{Path, PathBuf};
 
 use super::network::{self, NetworkArgs};
-use super::output::{atomic_write, bad, check_outputs, given};
+use super::output::{atomic_write, bad, check_outputs, diagnostic, given};
 use super::output::{EXIT_BAD_INPUT, EXIT_NOT_CONVERGED, EXIT_OK};
 use super::progress::{self, show_progress};
 use crate::io::{atomic, csv, obj};
@@ -139,11 +139,7 @@ fn solve_and_write(label: &str, sc: &Scene, source: &Source, outputs: Outputs, q
         };
         (step, largest)
     };
-    let diagnostic = sol
-        .report
-        .message
-        .as_deref()
-        .unwrap_or("no further diagnostic");
+    let diagnostic = diagnostic(&sol.report.message);
     if !r.all_finite() {
         let (step, largest) = stage();
         eprintln!(

@@ -9,38 +9,28 @@ use crate::scene::FieldError;
 pub(super) fn loads(s: &Scene, rods: &RodIndex) -> Result<(), FieldError> {
     for (i, l) in s.loads.iter().enumerate() {
         let err = |f: &str, msg: String| Err(FieldError::new("loads", i, f, msg));
-        match l {
-            Load::Force { rod, vertex, force } => {
-                if let Err((f, m)) = rods.rod_vertex(rod, *vertex) {
-                    return err(f, m);
-                }
-                if !finite3(force) {
-                    return err(
-                        "force",
-                        format!("must be finite (at most {MAX_MAGNITUDE:e} N), got {force:?}"),
-                    );
-                }
-            }
+        let (rod, vertex, field, value, unit) = match l {
+            Load::Force { rod, vertex, force } => (rod, vertex, "force", force, "N"),
             Load::Torque {
                 rod,
                 vertex,
                 torque,
-            } => {
-                if let Err((f, m)) = rods.rod_vertex(rod, *vertex) {
-                    return err(f, m);
-                }
-                if !finite3(torque) {
-                    return err(
-                        "torque",
-                        format!("must be finite (at most {MAX_MAGNITUDE:e} N·m), got {torque:?}"),
-                    );
-                }
-            }
+            } => (rod, vertex, "torque", torque, "N·m"),
             Load::Gravity { g } => {
                 if !finite3(g) {
                     return err("g", format!("must be finite, got {g:?}"));
                 }
+                continue;
             }
+        };
+        if let Err((f, m)) = rods.rod_vertex(rod, *vertex) {
+            return err(f, m);
+        }
+        if !finite3(value) {
+            return err(
+                field,
+                format!("must be finite (at most {MAX_MAGNITUDE:e} {unit}), got {value:?}"),
+            );
         }
     }
     Ok(())
