@@ -48,6 +48,8 @@ pub struct Generated {
 /// Name of the single material of a generated scene.
 pub const MATERIAL: &str = "obj";
 
+/// The scene of an OBJ network: a rod per polyline or chain of 2-vertex lines, a joint wherever
+/// several rod vertices share a point, supports chosen by the options.
 pub fn to_scene(obj: &ObjFile, o: &NetworkOptions) -> Result<Generated, ObjError> {
     let g = graph(obj, o.weld, o.chain)?;
     let rods: Vec<Rod> = rod_names(&g.chains)
@@ -64,7 +66,6 @@ pub fn to_scene(obj: &ObjFile, o: &NetworkOptions) -> Result<Generated, ObjError
         .collect();
     let rod_lines = g.chains.iter().map(|c| c.line).collect();
 
-    // Joints wherever several rod vertices share a point.
     let mut joints = Vec::new();
     let mut joint_lines = Vec::new();
     for (&id, at) in &g.at_point {

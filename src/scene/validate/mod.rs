@@ -47,6 +47,7 @@ fn segments(r: &Rod) -> usize {
     }
 }
 
+/// The first error of a scene, section by section.
 pub fn validate(s: &Scene) -> Result<(), FieldError> {
     materials::materials(s)?;
     let rods = rods::rods(s)?;
