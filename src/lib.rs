@@ -1,9 +1,9 @@
 //! rodnet: Discrete Elastic Rods statics for rod networks and elastic gridshells.
 //!
 //! Layout: [`rod`] (sections, frames, transport), [`energy`] (one term per file), [`network`]
-//! (state, DOF map, assembly, builder), [`solver`] (Newton, sparse Cholesky), [`scene`] (RON format
-//! and validation), [`io`] (results, OBJ), [`gridshell`] (Chebyshev nets), [`study`] (convergence
-//! under subdivision).
+//! (state, DOF map, assembly, builder), [`solver`] (Newton, sparse Cholesky), [`scene`] (RON format,
+//! validation, scenes from OBJ networks), [`io`] (results, exports), [`gridshell`] (Chebyshev nets),
+//! [`study`] (convergence under subdivision), [`cli`] (the `rodnet` commands).
 
 // Numeric kernels index several arrays with one loop variable; iterator chains there hide the
 // mathematics without making it safer.

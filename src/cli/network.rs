@@ -5,7 +5,7 @@ use std::path::PathBuf;
 
 use clap::{Args, ValueEnum};
 
-use crate::io::obj_import::{self, Generated, NetworkOptions};
+use crate::scene::obj_import::{self, Generated, NetworkOptions};
 use crate::scene::types::{JointKind, Scene, Solver};
 use crate::scene::{self, FieldError};
 

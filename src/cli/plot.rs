@@ -4,7 +4,7 @@ use std::path::PathBuf;
 
 use clap::Args;
 
-use super::{atomic_write, bad, check_outputs, EXIT_OK};
+use super::output::{atomic_write, bad, check_outputs, EXIT_OK};
 use crate::io::plot;
 use crate::scene;
 

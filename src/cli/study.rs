@@ -4,10 +4,10 @@ use std::path::{Path, PathBuf};
 
 use clap::{Args, Subcommand, ValueEnum};
 
-use super::{
-    bad, check_outputs, hemisphere_spec, progress, show_progress, HemisphereArgs, JointArg,
-    SectionRatio, EXIT_NOT_CONVERGED, EXIT_OK,
-};
+use super::gridshell::{hemisphere_spec, HemisphereArgs, PathArg, SectionRatio, DEFAULT_RODS};
+use super::network::JointArg;
+use super::output::{bad, check_outputs, given, EXIT_NOT_CONVERGED, EXIT_OK};
+use super::progress::{self, show_progress};
 use crate::gridshell::footprint::DEFAULT_SECTION_RATIO;
 use crate::gridshell::formfind::DEFAULT_START_CAP;
 use crate::io::atomic;
@@ -74,7 +74,7 @@ pub struct ConvergenceArgs {
 fn hemisphere_problem(a: &ConvergenceArgs) -> Result<Problem, String> {
     let h = HemisphereArgs {
         radius: 1.0,
-        rods: a.rods.unwrap_or(super::DEFAULT_RODS),
+        rods: a.rods.unwrap_or(DEFAULT_RODS),
         subdivide: a.subdivide.unwrap_or(DEFAULT_GRIDSHELL_SUBDIVIDE),
         joint: a.joint.unwrap_or(JointArg::Ball),
         section: SectionRatio(Section::Circle {
@@ -85,7 +85,7 @@ fn hemisphere_problem(a: &ConvergenceArgs) -> Result<Problem, String> {
         load_steps: 1,
         tolerance: 1e-9,
         start_cap: a.start_cap.unwrap_or(DEFAULT_START_CAP),
-        path: super::PathArg::CapNets,
+        path: PathArg::CapNets,
         scene_out: None,
         json: None,
         obj: None,
@@ -101,10 +101,7 @@ fn hemisphere_problem(a: &ConvergenceArgs) -> Result<Problem, String> {
 }
 
 pub fn run(a: &ConvergenceArgs) -> i32 {
-    let outputs: Vec<(&str, &Path)> = [("--csv", &a.csv), ("--plot", &a.plot)]
-        .into_iter()
-        .filter_map(|(f, p)| p.as_deref().map(|p| (f, p)))
-        .collect();
+    let outputs = given(&[("--csv", &a.csv), ("--plot", &a.plot)]);
     let inputs: Vec<&Path> = a.scene.as_deref().into_iter().collect();
     if let Err(e) = check_outputs(&outputs, &inputs) {
         return bad(e);
@@ -130,9 +127,9 @@ pub fn run(a: &ConvergenceArgs) -> i32 {
     let show = show_progress(a.quiet);
     let mut levels = Vec::with_capacity(plan.levels());
     for i in 0..plan.levels() {
-        progress::begin(plan.load_steps(), show);
-        let level = plan.solve(i, Some(std::sync::Arc::new(progress::hook)));
-        let _ = progress::finish();
+        let tracker = progress::Tracker::begin(plan.load_steps(), show);
+        let level = plan.solve(i, Some(tracker.hook()));
+        tracker.finish();
         if show {
             eprintln!(
                 "level {}/{}: subdivide {}, {} nodes, {} in {} iterations, {:.3} s",

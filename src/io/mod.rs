@@ -2,6 +2,5 @@
 pub mod atomic;
 pub mod csv;
 pub mod obj;
-pub mod obj_import;
 pub mod plot;
 pub mod results;

@@ -40,6 +40,11 @@ pub fn cross<T: Real>(a: V3<T>, b: V3<T>) -> V3<T> {
 pub fn norm<T: Real>(a: V3<T>) -> T {
     dot(a, a).sqrt()
 }
+/// Distance between two points.
+#[inline(always)]
+pub fn dist(a: &[f64; 3], b: &[f64; 3]) -> f64 {
+    norm(sub(*a, *b))
+}
 #[inline(always)]
 pub fn normalize<T: Real>(a: V3<T>) -> V3<T> {
     scale(a, norm(a).recip())

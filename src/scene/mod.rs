@@ -1,5 +1,7 @@
-//! Scenes: the RON format ([`types`]), reading with located errors, and validation.
+//! Scenes: the RON format ([`types`]), reading with located errors, validation, and scenes
+//! generated from OBJ networks ([`obj_import`]).
 pub mod locate;
+pub mod obj_import;
 pub mod types;
 pub mod validate;
 

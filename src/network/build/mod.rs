@@ -17,8 +17,8 @@ mod terms;
 
 use crate::network::contact::Contact;
 use crate::network::info::JointInfo;
-use crate::network::Network;
 use crate::network::model::{Model, ModelParts, Scales};
+use crate::network::Network;
 use crate::scene::{FieldError, Scene};
 use crate::variables::{DofLayout, FrameRef, State};
 

@@ -3,6 +3,7 @@
 
 use super::frames::{Joined, JointNode};
 use super::geometry::Rest;
+use crate::math::union_find::UnionFind;
 use crate::math::vec::{norm, sub};
 use crate::network::info::RodInfo;
 use crate::rod::frames::EdgeRef;
@@ -32,14 +33,6 @@ impl Numbered {
     }
 }
 
-fn find(p: &mut [usize], mut i: usize) -> usize {
-    while p[i] != i {
-        p[i] = p[p[i]];
-        i = p[i];
-    }
-    i
-}
-
 pub fn number(rest: &Rest, joined: &Joined) -> Numbered {
     let (rods, mut rest_pos) = nodes(rest, joined);
     let first_center = rest_pos.len();
@@ -67,12 +60,11 @@ fn nodes(rest: &Rest, joined: &Joined) -> (Vec<RodInfo>, Vec<[f64; 3]>) {
         first_id.push(n_raw);
         n_raw += p.len();
     }
-    let mut parent: Vec<usize> = (0..n_raw).collect();
+    let mut sets = UnionFind::new(n_raw);
     for group in &joined.merges {
-        let a = find(&mut parent, first_id[group[0].0] + group[0].1);
+        let a = first_id[group[0].0] + group[0].1;
         for &(r, node) in &group[1..] {
-            let b = find(&mut parent, first_id[r] + node);
-            parent[b] = a;
+            sets.union(a, first_id[r] + node);
         }
     }
     let mut node_of_root = vec![usize::MAX; n_raw];
@@ -81,7 +73,7 @@ fn nodes(rest: &Rest, joined: &Joined) -> (Vec<RodInfo>, Vec<[f64; 3]>) {
     for (ri, rod) in scene.rods.iter().enumerate() {
         let mut nodes = Vec::with_capacity(rest.nodes[ri].len());
         for (k, p) in rest.nodes[ri].iter().enumerate() {
-            let root = find(&mut parent, first_id[ri] + k);
+            let root = sets.find(first_id[ri] + k);
             if node_of_root[root] == usize::MAX {
                 node_of_root[root] = rest_pos.len();
                 rest_pos.push(*p);

@@ -14,8 +14,8 @@ use serde::{Deserialize, Serialize};
 use crate::energy::registry::{TermVisitor, Terms};
 use crate::energy::Term;
 use crate::network::assembly::Assembly;
-use crate::network::Network;
 use crate::network::model::EnergyParts;
+use crate::network::Network;
 use crate::scene::Scene;
 use crate::solver::NewtonReport;
 

@@ -1,0 +1,101 @@
+//! The `rodnet` command line (see docs/cli.md and docs/contract.md): the clap tree and the
+//! dispatch to one module per command.
+
+mod gridshell;
+mod network;
+mod output;
+mod plot;
+pub mod progress;
+mod solve;
+mod study;
+
+use std::path::PathBuf;
+
+use clap::{Parser, Subcommand};
+
+pub use gridshell::{
+    HemisphereArgs, PathArg, SectionRatio, DEFAULT_RODS, DEFAULT_SUBDIVIDE, MAX_RODS,
+};
+pub use network::{JointArg, NetworkArgs};
+pub use output::{EXIT_BAD_INPUT, EXIT_NOT_CONVERGED, EXIT_OK};
+pub use plot::PlotArgs;
+pub use progress::show_progress;
+pub use study::{ConvergenceArgs, StudyCommand};
+
+#[derive(Parser, Debug)]
+#[command(
+    name = "rodnet",
+    version,
+    about = "Discrete Elastic Rods statics for rod networks and gridshells"
+)]
+pub struct Cli {
+    #[command(subcommand)]
+    pub command: Command,
+}
+
+// Parsed once per process, so the size of the `Solve` variant's options does not matter.
+#[allow(clippy::large_enum_variant)]
+#[derive(Subcommand, Debug)]
+pub enum Command {
+    /// Solve a scene (or an OBJ network, with --network) for its static equilibrium.
+    Solve {
+        /// Scene file (RON).
+        #[arg(required_unless_present = "network")]
+        scene: Option<PathBuf>,
+        /// Write the results JSON here.
+        #[arg(long)]
+        json: Option<PathBuf>,
+        /// Write the equilibrium as OBJ polylines here.
+        #[arg(long)]
+        obj: Option<PathBuf>,
+        /// Write one CSV row per node here.
+        #[arg(long)]
+        csv: Option<PathBuf>,
+        /// No progress output.
+        #[arg(long)]
+        quiet: bool,
+        #[command(flatten)]
+        network: NetworkArgs,
+    },
+    /// Draw a results JSON as a PNG: orthographic views, rods coloured by bending stress.
+    Plot(PlotArgs),
+    /// Elastic gridshells: generate, form-find and compare with the analytic shape.
+    Gridshell {
+        #[command(subcommand)]
+        shape: GridshellCommand,
+    },
+    /// Studies that solve a problem many times: convergence under subdivision.
+    Study {
+        #[command(subcommand)]
+        study: StudyCommand,
+    },
+}
+
+#[derive(Subcommand, Debug)]
+pub enum GridshellCommand {
+    /// Hemispherical Chebyshev-net gridshell (Baek et al., PNAS 2018): builds the flat footprint
+    /// from straight rods, moves the rod ends onto the equator, and compares the dome with the
+    /// sphere and the net. With no output options it writes hemisphere.json, hemisphere.obj and
+    /// hemisphere.txt into the current directory (or --out-dir).
+    Hemisphere(HemisphereArgs),
+}
+
+pub fn run(cli: Cli) -> i32 {
+    match cli.command {
+        Command::Solve {
+            scene,
+            json,
+            obj,
+            csv,
+            quiet,
+            network,
+        } => solve::run(scene, solve::Outputs { json, obj, csv }, quiet, &network),
+        Command::Gridshell {
+            shape: GridshellCommand::Hemisphere(args),
+        } => gridshell::run(args),
+        Command::Plot(args) => plot::run(&args),
+        Command::Study {
+            study: StudyCommand::Convergence(args),
+        } => study::run(&args),
+    }
+}

@@ -1,0 +1,79 @@
+//! What the commands share about their outputs: exit codes, error messages on stderr, and the
+//! checks and atomic writes of output files.
+
+use std::path::{Path, PathBuf};
+
+use crate::io::atomic;
+
+/// Exit codes of the contract.
+pub const EXIT_OK: i32 = 0;
+pub const EXIT_NOT_CONVERGED: i32 = 1;
+pub const EXIT_BAD_INPUT: i32 = 2;
+
+/// Reports bad input and returns its exit code.
+pub(super) fn bad(msg: impl std::fmt::Display) -> i32 {
+    eprintln!("error: {msg}");
+    EXIT_BAD_INPUT
+}
+
+/// A solver's message for a failure report.
+pub(super) fn diagnostic(message: &Option<String>) -> &str {
+    message.as_deref().unwrap_or("no further diagnostic")
+}
+
+pub(super) fn atomic_write(p: &Path, bytes: &[u8]) -> Result<(), String> {
+    atomic::write(p, bytes).map_err(|e| format!("cannot write {}: {e}", p.display()))
+}
+
+/// Refuses outputs that would certainly fail or destroy an input, before any work is done: a
+/// missing directory, a directory as file name, the same file twice, an output over an input.
+pub(super) fn check_outputs(outputs: &[(&str, &Path)], inputs: &[&Path]) -> Result<(), String> {
+    let id = |p: &Path| -> Option<PathBuf> {
+        let name = p.file_name()?;
+        let dir = match p.parent().filter(|d| !d.as_os_str().is_empty()) {
+            Some(d) => d.canonicalize().ok()?,
+            None => std::env::current_dir().ok()?,
+        };
+        Some(dir.join(name))
+    };
+    let inputs: Vec<PathBuf> = inputs.iter().filter_map(|p| id(p)).collect();
+    let mut seen: Vec<(&str, PathBuf)> = Vec::new();
+    for &(flag, p) in outputs {
+        let shown = p.display();
+        if p.file_name().is_none() {
+            return Err(format!("{flag} {shown}: not a file name"));
+        }
+        if let Some(d) = p.parent().filter(|d| !d.as_os_str().is_empty()) {
+            if !d.is_dir() {
+                return Err(format!(
+                    "{flag} {shown}: directory {} does not exist",
+                    d.display()
+                ));
+            }
+        }
+        if p.is_dir() {
+            return Err(format!("{flag} {shown}: is a directory"));
+        }
+        let Some(full) = id(p) else { continue };
+        if inputs.contains(&full) {
+            return Err(format!(
+                "{flag} {shown}: is an input file; refusing to overwrite it"
+            ));
+        }
+        if let Some((other, _)) = seen.iter().find(|(_, q)| *q == full) {
+            return Err(format!("{flag} {shown}: same file as {other}"));
+        }
+        seen.push((flag, full));
+    }
+    Ok(())
+}
+
+/// The output options that were given, as (flag, path), for [`check_outputs`].
+pub(super) fn given<'f, 'p>(
+    options: &[(&'f str, &'p Option<PathBuf>)],
+) -> Vec<(&'f str, &'p Path)> {
+    options
+        .iter()
+        .filter_map(|&(f, p)| p.as_deref().map(|p| (f, p)))
+        .collect()
+}

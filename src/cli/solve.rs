@@ -1,0 +1,194 @@
+//! `rodnet solve SCENE.ron` and `rodnet solve --network NET.obj`: solve, report, write results.
+
+use std::path::{Path, PathBuf};
+
+use super::network::{self, NetworkArgs};
+use super::output::{atomic_write, bad, check_outputs, diagnostic, given};
+use super::output::{EXIT_BAD_INPUT, EXIT_NOT_CONVERGED, EXIT_OK};
+use super::progress::{self, show_progress};
+use crate::io::{atomic, csv, obj};
+use crate::pipeline as job;
+use crate::scene::{self, FieldError, Scene, SceneError};
+
+/// The result files asked for.
+pub(super) struct Outputs {
+    pub json: Option<PathBuf>,
+    pub obj: Option<PathBuf>,
+    pub csv: Option<PathBuf>,
+}
+
+impl Outputs {
+    fn list(&self) -> Vec<(&'static str, &Path)> {
+        given(&[
+            ("--json", &self.json),
+            ("--obj", &self.obj),
+            ("--csv", &self.csv),
+        ])
+    }
+}
+
+/// Where the scene came from, to turn errors found while building it into messages.
+enum Source {
+    Scene { file: String, src: String },
+    Network(Box<network::NetworkScene>),
+}
+
+impl Source {
+    fn describe(&self, e: &FieldError) -> String {
+        match self {
+            Source::Scene { file, src } => SceneError::from_field(file, src, e).to_string(),
+            Source::Network(n) => n.describe(e),
+        }
+    }
+}
+
+/// Solves the scene file, or the scene built from `--network`.
+pub(super) fn run(
+    scene: Option<PathBuf>,
+    outputs: Outputs,
+    quiet: bool,
+    network: &NetworkArgs,
+) -> i32 {
+    match (scene, &network.network) {
+        (Some(path), _) => match network.first_given() {
+            Some(flag) => bad(format_args!(
+                "{flag} builds a scene from --network NET.obj; it does not apply to the \
+                 scene file {} (edit the scene instead)",
+                path.display()
+            )),
+            None => solve(&path, outputs, quiet),
+        },
+        (None, Some(net)) => solve_network(net, network, outputs, quiet),
+        // clap requires one of the two.
+        (None, None) => EXIT_BAD_INPUT,
+    }
+}
+
+fn solve(path: &Path, outputs: Outputs, quiet: bool) -> i32 {
+    if let Err(e) = check_outputs(&outputs.list(), &[path]) {
+        return bad(e);
+    }
+    let (sc, src) = match scene::load(path) {
+        Ok(s) => s,
+        Err(e) => return bad(e),
+    };
+    let source = Source::Scene {
+        file: path.display().to_string(),
+        src,
+    };
+    solve_and_write(&path.display().to_string(), &sc, &source, outputs, quiet)
+}
+
+fn solve_network(path: &Path, args: &NetworkArgs, outputs: Outputs, quiet: bool) -> i32 {
+    let mut all = outputs.list();
+    if let Some(p) = &args.scene_out {
+        all.push(("--scene-out", p));
+    }
+    if let Err(e) = check_outputs(&all, &[path]) {
+        return bad(e);
+    }
+    let net = match network::load(path, args) {
+        Ok(n) => n,
+        Err(e) => return bad(e),
+    };
+    if let Some(p) = &args.scene_out {
+        let command: Vec<String> = std::env::args().collect();
+        let text = match network::scene_ron(&net, &command.join(" ")) {
+            Ok(t) => t,
+            Err(e) => return bad(e),
+        };
+        if let Err(e) = atomic_write(p, text.as_bytes()) {
+            return bad(e);
+        }
+        if args.scene_only {
+            return EXIT_OK;
+        }
+    }
+    let scene = net.scene().clone();
+    let label = path.display().to_string();
+    solve_and_write(
+        &label,
+        &scene,
+        &Source::Network(Box::new(net)),
+        outputs,
+        quiet,
+    )
+}
+
+fn solve_and_write(label: &str, sc: &Scene, source: &Source, outputs: Outputs, quiet: bool) -> i32 {
+    let mut settings = job::settings_of(sc);
+    let tracker = progress::Tracker::begin(settings.load_steps, show_progress(quiet));
+    settings.progress = Some(tracker.hook());
+    let result = job::solve_scene(sc, &settings);
+    let seen = tracker.finish();
+    let sol = match result {
+        Ok(s) => s,
+        Err(e) => return bad(source.describe(&e)),
+    };
+    let r = &sol.results;
+    let steps = settings.load_steps;
+    // Where the solve was when it stopped, for failure messages.
+    let stage = || {
+        let step = seen.last.map_or(1, |s| s.step);
+        let largest = match seen.largest_in_step {
+            Some(b) => format!(
+                "; largest relative residual in load step {step}/{steps}: {:.3e} (iteration {})",
+                b.residual, b.iteration
+            ),
+            None => String::new(),
+        };
+        (step, largest)
+    };
+    let diagnostic = diagnostic(&sol.report.message);
+    if !r.all_finite() {
+        let (step, largest) = stage();
+        eprintln!(
+            "error: {label}: the Newton solve diverged at load step {step}/{steps} (non-finite \
+             values: {diagnostic}){largest}; no results written"
+        );
+        return EXIT_NOT_CONVERGED;
+    }
+    let mut files: Vec<(&Path, Vec<u8>)> = Vec::new();
+    if let Some(p) = &outputs.json {
+        match serde_json::to_vec_pretty(r) {
+            Ok(b) => files.push((p, b)),
+            Err(e) => return bad(format_args!("cannot encode the results as JSON: {e}")),
+        }
+    }
+    if let Some(p) = &outputs.obj {
+        files.push((p, obj::to_obj(r).into_bytes()));
+    }
+    if let Some(p) = &outputs.csv {
+        files.push((p, csv::to_csv(&sol.equilibrium).into_bytes()));
+    }
+    if let Err((p, e)) = atomic::write_all(&files) {
+        return bad(format_args!("cannot write {}: {e}", p.display()));
+    }
+    println!(
+        "{label}: {} in {} iterations over {} load step(s), relative residual {:.3e}, energy {:.9e} J, {:.3} s{}",
+        if r.converged { "converged" } else { "NOT converged" },
+        r.iterations,
+        r.load_steps,
+        r.residual,
+        r.energy.total,
+        r.seconds,
+        if !r.converged || r.solver.stable {
+            ""
+        } else {
+            " (unstable: the Hessian has a direction of negative curvature)"
+        }
+    );
+    if r.converged {
+        if let Some(m) = &sol.report.message {
+            eprintln!("rodnet: {m}");
+        }
+        EXIT_OK
+    } else {
+        let (step, largest) = stage();
+        eprintln!(
+            "error: {label}: the Newton solve stopped at load step {step}/{steps}: {diagnostic}\
+             {largest}; results written with \"converged\": false"
+        );
+        EXIT_NOT_CONVERGED
+    }
+}
