@@ -2,16 +2,10 @@
 //! footprint to their equator points.
 //!
 //! The footprint and its pinned ends are symmetric under z → −z. Once the ends move inward, the
-//! flat grid is a saddle between the dome, its mirror image and mixed states, and rodnet's
-//! Newton solver starts badly there: the first continuation sub-step crushes the end edges
-//! (only the prescribed ends move), the increments shrink to ~1e-4 of the path, and near the
-//! flat saddle the line search finds no energy decrease and the solve stops (the saddle escape
-//! only runs once the residual is below tolerance). Measured with `rodnet solve` on footprint
-//! scenes (docs/gridshell.md): from the flat footprint 12 of 20 cases with n = 2–6, subdivide
-//! 1–8 stop at the saddle; the others leave it through the solver's negative-curvature escape,
-//! whose sign is not tied to "up". With an upward lift of 0.1 EI/R² on every joint, n = 8
-//! converges at subdivide 4 (221 iterations in the first of 8 load steps) but stops at the
-//! saddle at subdivide 8, and so does n = 16 at subdivide 4.
+//! flat grid is a saddle between the dome, its mirror image and mixed states: the first
+//! continuation sub-step crushes the end edges (only the prescribed ends move), and near the flat
+//! saddle the line search finds no energy decrease, or the solver's negative-curvature escape
+//! leaves it on a side that is not tied to "up" (measurements in docs/gridshell.md).
 //!
 //! So the symmetry is broken by the starting state instead. Before the solve, the footprint is
 //! bent onto a shallow spherical cap: the node with footprint coordinates (u, v) goes to the
@@ -27,13 +21,10 @@
 //!   angles and joint frames carry over from the last equilibrium). Each step is then a plain
 //!   equilibration at fixed ends; one that does not converge is halved from the last
 //!   equilibrium. The nets are only starting guesses: the shell's equilibrium departs from them
-//!   by a few percent of R and Newton finds it. Carrying the last equilibrium's departure from
-//!   its net over as a predictor was tried and cost more iterations (n = 12, K = 4: 16 against
-//!   14).
+//!   by a few percent of R and Newton finds it.
 //! - `Straight`: the ends move on straight lines from the cap's rim to their equator points, by
 //!   the solver's adaptive continuation, and nothing but the starting cap uses the analytic net.
-//!   Slower (about 100 Newton iterations for n = 12, K = 4): the first sub-step crushes the end
-//!   edges while the grid stands still.
+//!   Slower, because the first sub-step crushes the end edges while the grid stands still.
 //!
 //! The last step is the pure problem (ends pinned on the equator, no load), so the path only
 //! selects the branch and starts Newton close: the equilibrium does not depend on it

@@ -150,6 +150,75 @@ impl Row {
     }
 }
 
+/// One surface row per obstacle and free rod node (in rod order), with the node's clearance.
+fn obstacle_rows(
+    obstacles: usize,
+    order: &[usize],
+    radius: &[f64],
+    free: impl Fn(usize) -> bool,
+) -> Vec<Row> {
+    let mut rows = Vec::new();
+    for i in 0..obstacles {
+        for &n in order.iter().filter(|&&n| free(n)) {
+            rows.push(Row {
+                node: n,
+                source: Source::Obstacle(i),
+                kind: Kind::Surface {
+                    shape: i,
+                    clearance: radius[n],
+                },
+            });
+        }
+    }
+    rows
+}
+
+/// One row per bound, bounded axis and free node it applies to.
+fn bound_rows(
+    scene: &Scene,
+    rods: &[RodInfo],
+    order: &[usize],
+    free: impl Fn(usize) -> bool,
+) -> Vec<Row> {
+    let mut rows = Vec::new();
+    for (i, b) in scene.bounds.iter().enumerate() {
+        let rod_named = |name: &String| {
+            rods.iter()
+                .find(|r| &r.name == name)
+                .expect("validated rod")
+        };
+        let mut nodes: Vec<usize> = match (&b.rod, &b.vertices) {
+            (Some(name), Some(vs)) => {
+                let rod = rod_named(name);
+                vs.iter().map(|&v| rod.nodes[v * rod.subdivide]).collect()
+            }
+            (Some(name), None) => rod_named(name).nodes.clone(),
+            _ => order.to_vec(),
+        };
+        let mut seen = std::collections::HashSet::new();
+        nodes.retain(|&n| free(n) && seen.insert(n));
+        for axis in 0..3 {
+            for &n in &nodes {
+                if let Some(value) = b.min[axis] {
+                    rows.push(Row {
+                        node: n,
+                        source: Source::Bound(i),
+                        kind: Kind::Lower { axis, value },
+                    });
+                }
+                if let Some(value) = b.max[axis] {
+                    rows.push(Row {
+                        node: n,
+                        source: Source::Bound(i),
+                        kind: Kind::Upper { axis, value },
+                    });
+                }
+            }
+        }
+    }
+    rows
+}
+
 impl Contact {
     /// The constraints a scene declares, over the free nodes of the built rods; `None` when it
     /// declares none. Supported nodes are fixed and carry no constraint. A rest shape that
@@ -181,62 +250,29 @@ impl Contact {
         }
         let free = |n: usize| unknowns.of_node(n, 0).is_some();
         let shapes: Vec<Shape> = scene.obstacles.iter().map(Shape::of).collect();
-        let mut rows = Vec::new();
-        for i in 0..shapes.len() {
-            for &n in order.iter().filter(|&&n| free(n)) {
-                rows.push(Row {
-                    node: n,
-                    source: Source::Obstacle(i),
-                    kind: Kind::Surface {
-                        shape: i,
-                        clearance: radius[n],
-                    },
-                });
-            }
-        }
-        for (i, b) in scene.bounds.iter().enumerate() {
-            let rod_named = |name: &String| {
-                rods.iter()
-                    .find(|r| &r.name == name)
-                    .expect("validated rod")
-            };
-            let mut nodes: Vec<usize> = match (&b.rod, &b.vertices) {
-                (Some(name), Some(vs)) => {
-                    let rod = rod_named(name);
-                    vs.iter().map(|&v| rod.nodes[v * rod.subdivide]).collect()
-                }
-                (Some(name), None) => rod_named(name).nodes.clone(),
-                _ => order.clone(),
-            };
-            let mut seen = std::collections::HashSet::new();
-            nodes.retain(|&n| free(n) && seen.insert(n));
-            for axis in 0..3 {
-                for &n in &nodes {
-                    if let Some(value) = b.min[axis] {
-                        rows.push(Row {
-                            node: n,
-                            source: Source::Bound(i),
-                            kind: Kind::Lower { axis, value },
-                        });
-                    }
-                    if let Some(value) = b.max[axis] {
-                        rows.push(Row {
-                            node: n,
-                            source: Source::Bound(i),
-                            kind: Kind::Upper { axis, value },
-                        });
-                    }
-                }
-            }
-        }
+        let mut rows = obstacle_rows(shapes.len(), &order, &radius, free);
+        rows.extend(bound_rows(scene, rods, &order, free));
         let contact = Contact {
             shapes,
             rows,
             length_scale,
             layout,
         };
+        contact.check_rest(rods, &owner, &radius, q)?;
+        Ok(Some(contact))
+    }
+
+    /// A rest shape that violates a constraint beyond round-off is an input error.
+    fn check_rest(
+        &self,
+        rods: &[RodInfo],
+        owner: &[Option<(usize, usize)>],
+        radius: &[f64],
+        q: &[f64],
+    ) -> Result<(), FieldError> {
+        let (contact, layout, length_scale) = (self, self.layout, self.length_scale);
         for row in &contact.rows {
-            let (c, _) = row.at(&contact, q);
+            let (c, _) = row.at(contact, q);
             if c < -REST_TOLERANCE * length_scale {
                 let (r, k) = owner[row.node].expect("rod node");
                 let at = format!(
@@ -274,7 +310,7 @@ impl Contact {
                 });
             }
         }
-        Ok(Some(contact))
+        Ok(())
     }
 
     pub fn len(&self) -> usize {

@@ -1,5 +1,6 @@
 //! Newton's method on the total energy, its linear algebra, and its settings.
 pub mod linalg;
+pub mod line_search;
 pub mod newton;
 pub mod ordering;
 pub mod problem;

@@ -8,6 +8,9 @@
 //! the smaller boundary (those with a neighbour on the other side), order both halves
 //! recursively and the separator last.
 
+use super::linalg::SparseCholesky;
+use super::problem::NewtonProblem;
+
 /// Below this many unknowns a part is not split further.
 const LEAF: usize = 64;
 
@@ -142,6 +145,33 @@ impl Dissection<'_> {
         (0..3)
             .max_by(|&a, &b| (hi[a] - lo[a]).total_cmp(&(hi[b] - lo[b])))
             .unwrap()
+    }
+}
+
+/// The sparse Cholesky of the problem's Hessian pattern, with the ordering `ordering` asks for.
+pub(super) fn factorization<P: NewtonProblem>(
+    p: &P,
+    n: usize,
+    pairs: &[(usize, usize)],
+    ordering: Ordering,
+) -> (SparseCholesky, Vec<usize>) {
+    let try_nd = match ordering {
+        Ordering::Amd => false,
+        Ordering::NestedDissection => true,
+        Ordering::Auto => n >= AUTO_MIN_UNKNOWNS,
+    };
+    let Some(pts) = try_nd.then(|| p.unknown_positions()).flatten() else {
+        return SparseCholesky::new(n, pairs);
+    };
+    let nd = SparseCholesky::with_order(n, pairs, Some(&nested_dissection(n, pairs, &pts)));
+    if ordering == Ordering::NestedDissection {
+        return nd;
+    }
+    let amd = SparseCholesky::new(n, pairs);
+    if (nd.0.factor_nnz() as f64) < AUTO_FILL_RATIO * amd.0.factor_nnz() as f64 {
+        nd
+    } else {
+        amd
     }
 }
 
