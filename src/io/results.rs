@@ -178,30 +178,7 @@ pub struct Results {
 }
 
 /// The `reference` block of the results JSON.
-#[derive(Debug, Clone, Serialize, Deserialize)]
-pub struct ReferenceJson {
-    pub rod: String,
-    pub vertex: usize,
-    /// The scene's reference position, m.
-    pub position: [f64; 3],
-    /// The vertex's computed position, m.
-    pub computed: [f64; 3],
-    /// |computed − position| / |position − rest|: the error of the vertex's displacement
-    /// relative to the reference displacement.
-    pub error: f64,
-}
-
-impl From<&ReferenceCheck> for ReferenceJson {
-    fn from(r: &ReferenceCheck) -> Self {
-        ReferenceJson {
-            rod: r.rod.clone(),
-            vertex: r.vertex,
-            position: r.position,
-            computed: r.computed,
-            error: r.error,
-        }
-    }
-}
+pub type ReferenceJson = ReferenceCheck;
 
 impl From<&TargetCheck> for TargetJson {
     fn from(t: &TargetCheck) -> Self {
@@ -270,7 +247,7 @@ impl Results {
             joints,
             reactions,
             target: eq.target.as_ref().map(TargetJson::from),
-            reference: eq.reference.as_ref().map(ReferenceJson::from),
+            reference: eq.reference.clone(),
             solver: SolverJson {
                 factorizations: report.factorizations,
                 regularized_iterations: report.regularized_iterations,

@@ -1,11 +1,14 @@
 //! The scene's `reference` (a known equilibrium position of one input vertex) against the
 //! computed equilibrium.
 
+use serde::{Deserialize, Serialize};
+
 use crate::math::vec::{norm, sub};
 use crate::network::Network;
 use crate::scene::Scene;
 
-#[derive(Debug, Clone, PartialEq)]
+/// Also the `reference` block of the results JSON, as it is.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct ReferenceCheck {
     pub rod: String,
     pub vertex: usize,
