@@ -140,6 +140,8 @@ pub struct KktJson {
     pub qp_seconds: f64,
 }
 
+/// Read back (`rodnet plot`), only `rods` is required: the other fields default, so that any JSON
+/// that keeps the contract's rod keys can be read.
 #[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct Results {
     #[serde(default)]
@@ -160,20 +162,16 @@ pub struct Results {
     #[serde(default)]
     pub reactions: Vec<ReactionJson>,
     #[serde(skip_serializing_if = "Option::is_none")]
-    #[serde(default)]
     pub target: Option<TargetJson>,
     /// Scenes with a `reference` only.
     #[serde(skip_serializing_if = "Option::is_none")]
-    #[serde(default)]
     pub reference: Option<ReferenceJson>,
     #[serde(default)]
     pub solver: SolverJson,
     /// Scenes with obstacles or bounds only.
     #[serde(skip_serializing_if = "Option::is_none")]
-    #[serde(default)]
     pub contacts: Option<Vec<ContactJson>>,
     #[serde(skip_serializing_if = "Option::is_none")]
-    #[serde(default)]
     pub kkt: Option<KktJson>,
 }
 

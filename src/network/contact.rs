@@ -190,7 +190,9 @@ fn bound_rows(
         let mut nodes: Vec<usize> = match (&b.rod, &b.vertices) {
             (Some(name), Some(vs)) => {
                 let rod = rod_named(name);
-                vs.iter().map(|&v| rod.nodes[v * rod.subdivide]).collect()
+                vs.iter()
+                    .map(|&v| rod.vertex_node(v).expect("validated vertex"))
+                    .collect()
             }
             (Some(name), None) => rod_named(name).nodes.clone(),
             _ => order.to_vec(),

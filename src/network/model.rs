@@ -27,6 +27,15 @@ impl EnergyParts {
     pub fn total(&self) -> f64 {
         self.stretch + self.bend + self.twist + self.joints + self.external
     }
+    /// Sums kinds by category, in the given order.
+    pub fn of(kinds: &[KindEnergy]) -> EnergyParts {
+        let mut parts = EnergyParts::default();
+        for k in kinds {
+            parts.add(k.category, k.energy);
+        }
+        parts
+    }
+
     pub fn add(&mut self, c: Category, e: f64) {
         match c {
             Category::Stretch => self.stretch += e,
@@ -36,6 +45,14 @@ impl EnergyParts {
             Category::External => self.external += e,
         }
     }
+}
+
+/// The energy of one kind of term.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct KindEnergy {
+    pub name: &'static str,
+    pub category: Category,
+    pub energy: f64,
 }
 
 /// A fixed vertex frame rotated by `λ · rotation` (rotation vector) over the load steps.
@@ -140,18 +157,37 @@ impl Model {
         self.layout.position(&self.state.q, n)
     }
 
-    /// Energy of the current state, by category.
-    pub fn energy_parts(&self) -> EnergyParts {
-        struct Sum<'a>(&'a State, EnergyParts);
-        impl TermVisitor for Sum<'_> {
-            fn visit<const N: usize, E: Term<N>>(&mut self, _: usize, terms: &[E]) {
+    /// Calls `f(kind, category, energy)` for every term kind at the current state, in the order
+    /// of [`Terms::NAMES`].
+    fn each_kind_energy(&self, f: impl FnMut(usize, Category, f64)) {
+        struct Each<'a, F>(&'a State, F);
+        impl<F: FnMut(usize, Category, f64)> TermVisitor for Each<'_, F> {
+            fn visit<const N: usize, E: Term<N>>(&mut self, kind: usize, terms: &[E]) {
                 let e = sum_energy(terms, self.0);
-                self.1.add(E::CATEGORY, e);
+                (self.1)(kind, E::CATEGORY, e);
             }
         }
-        let mut sum = Sum(&self.state, EnergyParts::default());
-        self.terms.visit(&mut sum);
-        sum.1
+        self.terms.visit(&mut Each(&self.state, f));
+    }
+
+    /// Energy of each term kind at the current state, J.
+    pub fn energy_by_kind(&self) -> Vec<KindEnergy> {
+        let mut out = Vec::with_capacity(Terms::KINDS);
+        self.each_kind_energy(|kind, category, energy| {
+            out.push(KindEnergy {
+                name: Terms::NAMES[kind],
+                category,
+                energy,
+            })
+        });
+        out
+    }
+
+    /// Energy of the current state, by category (no allocation: line searches call this).
+    pub fn energy_parts(&self) -> EnergyParts {
+        let mut parts = EnergyParts::default();
+        self.each_kind_energy(|_, category, energy| parts.add(category, energy));
+        parts
     }
 
     pub fn energy(&self) -> f64 {
@@ -298,7 +334,7 @@ impl Model {
     /// True when the continuation parameter changes nothing: no external load and no
     /// prescribed motion.
     pub fn continuation_is_trivial(&self) -> bool {
-        let external = self.energy_parts_count(Category::External);
+        let external = self.count_of(Category::External);
         external == 0
             && self.prescribed.iter().all(|p| p.start == p.end)
             && self
@@ -308,7 +344,7 @@ impl Model {
     }
 
     /// Number of terms of category `c`.
-    fn energy_parts_count(&self, c: Category) -> usize {
+    fn count_of(&self, c: Category) -> usize {
         struct Count(Category, usize);
         impl TermVisitor for Count {
             fn visit<const N: usize, E: Term<N>>(&mut self, _: usize, terms: &[E]) {
@@ -349,8 +385,8 @@ impl Model {
     /// Characteristic size of each free unknown: positions in units of the mean rest edge
     /// length, angles in radians. Turning an edge by one radian moves its end by about that
     /// length, so a unit dimensionless step is the same size for both; the bounding box's
-    /// diagonal, the other natural length, would damp the angles of a finely subdivided
-    /// structure by the square of its edge count (docs/design.md).
+    /// diagonal, the other natural length, damps the angles by (diagonal / edge)² relative to the
+    /// positions (docs/design.md).
     pub fn unknown_scales(&self, scales: &mut [f64]) {
         let n = self.rest_lengths.len().max(1) as f64;
         let edge = self.rest_lengths.iter().sum::<f64>() / n;

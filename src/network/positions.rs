@@ -32,19 +32,16 @@ impl TermVisitor for Place<'_> {
         let m = self.model;
         let unknowns = m.unknowns();
         for term in terms {
-            let nodes: Vec<usize> = term
-                .vars()
-                .iter()
-                .filter_map(|&v| m.layout.node_of(v))
-                .collect();
+            // Centroid of the term's nodes, each counted once per coordinate variable.
             let mut c = [0.0; 3];
-            for &n in &nodes {
+            let mut k = 0.0;
+            for n in term.vars().iter().filter_map(|&v| m.layout.node_of(v)) {
                 let p = m.position(n);
                 for a in 0..3 {
                     c[a] += p[a];
                 }
+                k += 1.0;
             }
-            let k = nodes.len() as f64;
             for &v in term.vars() {
                 let Some(f) = unknowns.of(v) else { continue };
                 if self.pos[f].is_some() {

@@ -344,7 +344,7 @@ impl Plan {
             .map(|p| match p {
                 Probe::Vertex(rod, k) => {
                     let r = rods[rod.as_str()];
-                    at(r.nodes[k * r.subdivide])
+                    at(r.vertex_node(*k).expect("validated vertex"))
                 }
                 Probe::Joint(name) => at(joints[name.as_str()]),
             })

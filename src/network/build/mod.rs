@@ -71,12 +71,11 @@ pub fn build(scene: &Scene) -> Result<Network, FieldError> {
             node: net.joint_node(n),
         })
         .collect();
-    let unknowns_fixed = fixed;
     let mut model = Model::new(ModelParts {
         layout,
         state,
         terms,
-        fixed: unknowns_fixed,
+        fixed,
         prescribed: supported.prescribed,
         prescribed_rotations: supported.rotations,
         edge_nodes: net.edge_nodes,

@@ -11,10 +11,8 @@ mod target;
 
 use serde::{Deserialize, Serialize};
 
-use crate::energy::registry::{TermVisitor, Terms};
-use crate::energy::Term;
 use crate::network::assembly::Assembly;
-use crate::network::model::EnergyParts;
+use crate::network::model::{EnergyParts, KindEnergy};
 use crate::network::Network;
 use crate::scene::Scene;
 use crate::solver::NewtonReport;
@@ -54,8 +52,8 @@ pub struct Reaction {
 #[derive(Debug, Clone)]
 pub struct Equilibrium {
     pub energy: EnergyParts,
-    /// Energy of each term kind, in the order of [`Terms::NAMES`], J.
-    pub energy_by_kind: Vec<(&'static str, f64)>,
+    /// Energy of each term kind, in the order of `Terms::NAMES`.
+    pub energy_by_kind: Vec<KindEnergy>,
     pub rods: Vec<RodEquilibrium>,
     /// Joint names and positions, m.
     pub joints: Vec<(String, [f64; 3])>,
@@ -116,9 +114,10 @@ impl Equilibrium {
             let cr = report.constraints.as_ref().unwrap_or(&none);
             constraints::forces(net, c, cr, &grad, report.tolerance)
         });
+        let energy_by_kind = m.energy_by_kind();
         Equilibrium {
-            energy: m.energy_parts(),
-            energy_by_kind: energy_by_kind(net),
+            energy: EnergyParts::of(&energy_by_kind),
+            energy_by_kind,
             rods,
             joints: net
                 .joints
@@ -144,17 +143,4 @@ fn axial_force(net: &Network, e: usize) -> f64 {
     let s = &net.model.terms.stretch[e];
     debug_assert_eq!(s.edge, e, "one stretch term per edge, in edge order");
     s.ea * (edge_length(net, e) / s.rest_length - 1.0)
-}
-
-fn energy_by_kind(net: &Network) -> Vec<(&'static str, f64)> {
-    struct ByKind<'a>(&'a crate::variables::State, Vec<(&'static str, f64)>);
-    impl TermVisitor for ByKind<'_> {
-        fn visit<const N: usize, E: Term<N>>(&mut self, kind: usize, terms: &[E]) {
-            let e = terms.iter().map(|t| t.energy(self.0)).sum();
-            self.1.push((Terms::NAMES[kind], e));
-        }
-    }
-    let mut v = ByKind(&net.model.state, Vec::with_capacity(Terms::KINDS));
-    net.model.terms.visit(&mut v);
-    v.1
 }

@@ -1,0 +1,72 @@
+//! rodnet's layers (docs/architecture.md): each top-level module of `src/` may import only the
+//! modules listed for it. Reads the sources as text: every `crate::<module>` path outside a
+//! `#[cfg(test)] mod tests` block counts, doc links included.
+
+use std::collections::BTreeSet;
+use std::path::Path;
+
+const LAYERS: &[(&str, &[&str])] = &[
+    ("math", &[]),
+    ("rod", &["math"]),
+    ("scene", &["math", "rod"]),
+    ("variables", &["math", "rod"]),
+    ("energy", &["math", "rod", "variables"]),
+    ("solver", &[]),
+    (
+        "network",
+        &["math", "rod", "scene", "variables", "energy", "solver"],
+    ),
+    ("io", &["math", "network", "scene", "solver"]),
+    ("pipeline", &["io", "network", "scene", "solver"]),
+];
+
+fn sources(dir: &Path, out: &mut Vec<std::path::PathBuf>) {
+    for e in std::fs::read_dir(dir).unwrap() {
+        let p = e.unwrap().path();
+        if p.is_dir() {
+            sources(&p, out);
+        } else if p.extension().is_some_and(|x| x == "rs") {
+            out.push(p);
+        }
+    }
+}
+
+fn imports(text: &str) -> BTreeSet<String> {
+    let code = match text.find("#[cfg(test)]\nmod tests") {
+        Some(i) => &text[..i],
+        None => text,
+    };
+    code.match_indices("crate::")
+        .map(|(i, _)| {
+            code[i + 7..]
+                .chars()
+                .take_while(|c| c.is_ascii_alphanumeric() || *c == '_')
+                .collect()
+        })
+        .collect()
+}
+
+#[test]
+fn lower_layers_import_nothing_above_them() {
+    let src = Path::new(env!("CARGO_MANIFEST_DIR")).join("src");
+    let mut bad = Vec::new();
+    for (layer, allowed) in LAYERS {
+        let mut files = Vec::new();
+        let dir = src.join(layer);
+        if dir.is_dir() {
+            sources(&dir, &mut files);
+        } else {
+            files.push(src.join(format!("{layer}.rs")));
+        }
+        assert!(!files.is_empty(), "no sources for layer {layer}");
+        for f in files {
+            let text = std::fs::read_to_string(&f).unwrap();
+            for m in imports(&text) {
+                if m != *layer && !allowed.contains(&m.as_str()) {
+                    bad.push(format!("{} imports crate::{m}", f.display()));
+                }
+            }
+        }
+    }
+    assert!(bad.is_empty(), "layer violations:\n{}", bad.join("\n"));
+}
