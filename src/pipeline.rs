@@ -5,6 +5,7 @@
 use crate::io::results::Results;
 use crate::network::equilibrium::Equilibrium;
 use crate::network::{build, Network};
+use crate::scene::types::DEFAULT_TOLERANCE;
 use crate::scene::{FieldError, Scene};
 use crate::solver::{NewtonReport, NewtonSettings};
 
@@ -18,7 +19,9 @@ pub struct Solution {
 /// The solver settings a scene asks for.
 pub fn settings_of(scene: &Scene) -> NewtonSettings {
     NewtonSettings::default()
-        .tolerance(scene.solver.tolerance)
+        .tolerance(scene.solver.tolerance.unwrap_or(DEFAULT_TOLERANCE))
+        .automatic_tolerance(scene.solver.tolerance.is_none())
+        .time_limit(scene.solver.time_limit)
         .max_iterations(scene.solver.max_iterations)
         .load_steps(scene.solver.load_steps)
 }
@@ -28,7 +31,7 @@ pub fn solve_scene(scene: &Scene, settings: &NewtonSettings) -> Result<Solution,
     run(
         scene,
         settings,
-        |net, s| crate::network::solve(&mut net.model, s),
+        |net, s| crate::network::solve_toward(&mut net.model, s, scene.solver.buckle_toward),
         |_, _| {},
     )
 }

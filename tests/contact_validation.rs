@@ -41,8 +41,9 @@ fn lifted_rod(n: usize, h: f64, length: f64, r: f64) -> Scene {
 
 fn solve(s: &Scene) -> Solution {
     let sol = solve_scene(s, &settings_of(s)).expect("valid scene");
+    // Converged, or (a tolerance asked below what doubles allow) stopped at the round-off floor.
     assert!(
-        sol.results.converged,
+        sol.results.converged || sol.results.stopped_at_floor,
         "not converged: {:?}",
         sol.report.message
     );
@@ -272,7 +273,7 @@ fn pressed_rod(obstacle: Obstacle, n: usize) -> Scene {
     ];
     s.loads = vec![Load::Gravity { g: [0.0, 0.0, -G] }];
     s.obstacles = vec![obstacle];
-    s.solver.tolerance = 1e-11;
+    s.solver.tolerance = Some(1e-11);
     s.solver.max_iterations = 500;
     s
 }

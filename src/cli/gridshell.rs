@@ -59,9 +59,10 @@ pub struct HemisphereArgs {
     /// solver's straight-line continuation).
     #[arg(long, default_value_t = 1)]
     pub load_steps: usize,
-    /// Relative residual tolerance (see docs/scene-format.md).
-    #[arg(long, default_value_t = 1e-9)]
-    pub tolerance: f64,
+    /// Relative residual tolerance [default: automatic, 1e-9 or the round-off floor where
+    /// higher] (see docs/scene-format.md).
+    #[arg(long)]
+    pub tolerance: Option<f64>,
     /// Radius of the shallow cap, over R, onto which the footprint is first bent (upward and
     /// without stretching) to break the up-down symmetry; 0 starts from the flat footprint.
     #[arg(long, default_value_t = DEFAULT_START_CAP)]
@@ -168,8 +169,8 @@ pub(super) fn hemisphere_spec(a: &HemisphereArgs) -> Result<HemisphereSpec, Stri
             scene::validate::MAX_LOAD_STEPS
         ));
     }
-    if !positive(a.tolerance) {
-        return Err(format!("--tolerance must be positive, got {}", a.tolerance));
+    if let Some(t) = a.tolerance.filter(|t| !positive(*t)) {
+        return Err(format!("--tolerance must be positive, got {t}"));
     }
     if !(a.start_cap == 0.0 || (a.start_cap.is_finite() && a.start_cap >= 1.0)) {
         return Err(format!(

@@ -284,9 +284,11 @@ pub fn load(path: &std::path::Path, a: &NetworkArgs) -> Result<NetworkScene, Str
         chain: !a.no_chain,
         gravity: a.gravity,
         solver: Solver {
-            tolerance: a.tolerance.unwrap_or(defaults.tolerance),
+            tolerance: a.tolerance.or(defaults.tolerance),
             max_iterations: a.max_iterations.unwrap_or(defaults.max_iterations),
             load_steps: a.load_steps.unwrap_or(defaults.load_steps),
+            time_limit: None,
+            buckle_toward: None,
         },
     };
     let generated = obj_import::to_scene(&obj, &opts).map_err(at)?;

@@ -83,7 +83,7 @@ fn hemisphere_problem(a: &ConvergenceArgs) -> Result<Problem, String> {
         young_modulus: 1e9,
         poisson_ratio: 0.3,
         load_steps: 1,
-        tolerance: 1e-9,
+        tolerance: None,
         start_cap: a.start_cap.unwrap_or(DEFAULT_START_CAP),
         path: PathArg::CapNets,
         scene_out: None,

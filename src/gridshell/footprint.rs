@@ -68,7 +68,8 @@ pub struct HemisphereSpec {
     pub load_steps: usize,
     /// How the ends travel from the starting cap to the equator.
     pub path: crate::gridshell::formfind::FormPath,
-    pub tolerance: f64,
+    /// None: automatic (see `scene::types::Solver`).
+    pub tolerance: Option<f64>,
     pub max_iterations: usize,
 }
 
@@ -95,7 +96,7 @@ impl HemisphereSpec {
             poisson_ratio: 0.3,
             load_steps: 1,
             path: Default::default(),
-            tolerance: 1e-9,
+            tolerance: None,
             max_iterations: 400,
         }
     }
@@ -230,6 +231,8 @@ pub fn footprint(spec: &HemisphereSpec) -> Footprint {
             tolerance: spec.tolerance,
             max_iterations: spec.max_iterations,
             load_steps: spec.load_steps,
+            time_limit: None,
+            buckle_toward: None,
         },
     };
     Footprint {

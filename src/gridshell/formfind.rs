@@ -176,9 +176,12 @@ fn cap_path(
             // Only the last step is the answer; the others just start the next.
             settings
                 .tolerance
-                .max(solver::newton::INTERMEDIATE_TOLERANCE)
+                .max(solver::continuation::INTERMEDIATE_TOLERANCE)
         };
-        let r = problem.solve(&settings.clone().load_steps(1).tolerance(tolerance));
+        // An intermediate state stalled at the round-off floor starts the next step well enough.
+        let automatic = settings.automatic_tolerance || !last;
+        let step_settings = settings.clone().load_steps(1).tolerance(tolerance);
+        let r = problem.solve(&step_settings.automatic_tolerance(automatic));
         merge(&mut total, &r);
         if r.converged {
             pending.pop();
@@ -256,6 +259,8 @@ fn merge(total: &mut NewtonReport, r: &NewtonReport) {
     total.stable = r.stable;
     total.residual_floor = r.residual_floor;
     total.tolerance = r.tolerance;
+    total.stopped_at_floor = r.stopped_at_floor;
+    total.stopped.clone_from(&r.stopped);
 }
 
 /// Rotation vector of the smallest rotation taking the unit vector `a` to the unit vector `b`.

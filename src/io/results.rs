@@ -92,6 +92,9 @@ pub struct SolverJson {
     pub free_unknowns: usize,
     pub step_iterations: Vec<usize>,
     pub message: Option<String>,
+    /// Iterations of the path under the `buckle_toward` bias (included in `iterations`).
+    #[serde(default)]
+    pub biased_iterations: usize,
 }
 
 /// The force one active constraint (obstacle contact or coordinate bound) exerts on a node.
@@ -154,6 +157,18 @@ pub struct Results {
     pub residual: f64,
     #[serde(default)]
     pub seconds: f64,
+    /// Relative residual that rounding the unknowns to doubles causes at the final state.
+    #[serde(default)]
+    pub residual_floor: f64,
+    /// The tolerance the solve used.
+    #[serde(default)]
+    pub tolerance: f64,
+    /// The solve stopped below the round-off floor, above the tolerance.
+    #[serde(default)]
+    pub stopped_at_floor: bool,
+    /// What stopped an unconverged solve early ("time limit").
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub stopped: Option<String>,
     #[serde(default)]
     pub energy: EnergyJson,
     pub rods: Vec<RodJson>,
@@ -240,6 +255,10 @@ impl Results {
             load_steps: report.load_steps,
             residual: report.residual,
             seconds: report.seconds,
+            residual_floor: report.residual_floor,
+            tolerance: report.tolerance,
+            stopped_at_floor: report.stopped_at_floor,
+            stopped: report.stopped.clone(),
             energy: eq.energy.into(),
             rods,
             joints,
@@ -254,6 +273,7 @@ impl Results {
                 factor_seconds: report.factor_seconds,
                 free_unknowns: eq.free_unknowns,
                 step_iterations: report.step_iterations.clone(),
+                biased_iterations: report.biased_iterations,
                 message: report.message.clone(),
             },
             contacts,

@@ -3,6 +3,7 @@
 //! ([`equilibrium`]).
 
 pub mod assembly;
+pub mod buckle;
 pub mod build;
 pub mod contact;
 pub mod equilibrium;
@@ -14,6 +15,7 @@ pub mod problem;
 pub mod projection;
 pub mod rest;
 
+pub use buckle::solve as solve_toward;
 pub use build::build;
 pub use info::{JointInfo, RodInfo, SupportInfo};
 pub use model::Model;

@@ -293,24 +293,20 @@ impl Model {
         alpha
     }
 
-    /// Relative residual that round-off alone produces: a coordinate X carries an absolute error
-    /// of about ε·X, so an edge of rest length l̄ and rigidity EA carries a force error of about
-    /// 2ε·EA·X/l̄. Stiff, finely subdivided rods cannot be converged below this. A node sums
-    /// the errors of its two edges (more at a joint) and of its bending stencils, so the estimate
-    /// carries a factor 4 over 2ε (docs/convergence.md shows 2ε being exceeded).
-    pub fn residual_floor(&self) -> f64 {
-        let q = &self.state.q;
-        let x = q[self.layout.positions()]
-            .iter()
-            .map(|x| x.abs())
-            .fold(self.length_scale, f64::max);
-        let worst = self
-            .terms
-            .stretch
-            .iter()
-            .map(|s| s.ea / s.rest_length)
-            .fold(0.0, f64::max);
-        8.0 * f64::EPSILON * worst * x / self.force_scale
+    /// The rounding error of each free variable (half an ulp of its value, with a fixed
+    /// pseudo-random sign): the residual that this perturbation causes is what round-off alone
+    /// produces at the current state (`NetworkProblem::residual_floor`).
+    pub fn rounding_noise(&self, out: &mut [f64]) {
+        for (v, &f) in self.free.iter().enumerate() {
+            if f != FIXED {
+                let sign = if (v.wrapping_mul(2654435761) >> 13) & 1 == 0 {
+                    1.0
+                } else {
+                    -1.0
+                };
+                out[f as usize] = sign * 0.5 * f64::EPSILON * self.state.q[v].abs();
+            }
+        }
     }
 
     /// Largest residual over free variables, relative: forces over the force scale and moments

@@ -14,6 +14,11 @@ pub struct NetworkProblem<'m> {
     projector: Option<Projector>,
     /// Scratch copy of the variables for trial evaluations.
     saved_q: Vec<f64>,
+    /// A temporary dead force on the free unknowns (energy −b·q), empty for none: the bias of
+    /// `buckle_toward` (`network/buckle.rs`).
+    bias: Vec<f64>,
+    /// The side a symmetric state should be left toward, for the saddle escape's sign.
+    toward: Option<[f64; 3]>,
 }
 
 impl<'m> NetworkProblem<'m> {
@@ -23,7 +28,16 @@ impl<'m> NetworkProblem<'m> {
             slots: HessianSlots::default(),
             projector: None,
             saved_q: Vec::new(),
+            bias: Vec::new(),
+            toward: None,
         }
+    }
+
+    /// Leaves symmetric states toward `toward`, with the bias force `bias` on the free unknowns
+    /// (empty: none) until it is removed.
+    pub fn set_bias(&mut self, bias: Vec<f64>, toward: Option<[f64; 3]>) {
+        self.bias = bias;
+        self.toward = toward;
     }
 
     /// Solves for an equilibrium with the solver's Newton method.
@@ -50,6 +64,24 @@ pub fn solve(model: &mut Model, settings: &NewtonSettings) -> NewtonReport {
     NetworkProblem::new(model).solve(settings)
 }
 
+/// Energy of the bias force b at the model's current state, −b·q over free unknowns.
+fn bias_energy(m: &Model, b: &[f64]) -> f64 {
+    if b.is_empty() {
+        return 0.0;
+    }
+    let mut e = 0.0;
+    for (v, &f) in m.free.iter().enumerate() {
+        if f != crate::variables::FIXED {
+            e -= b[f as usize] * m.state.q[v];
+        }
+    }
+    e
+}
+
+fn subtract(grad: &mut [f64], b: &[f64]) {
+    grad.iter_mut().zip(b).for_each(|(g, b)| *g -= b);
+}
+
 impl NewtonProblem for NetworkProblem<'_> {
     type Snapshot = State;
     fn snapshot(&self) -> State {
@@ -73,8 +105,24 @@ impl NewtonProblem for NetworkProblem<'_> {
         }
         m.commit();
     }
-    fn residual_floor(&self) -> f64 {
-        self.model.residual_floor()
+    fn residual_floor(&mut self) -> f64 {
+        // Measured, not estimated from stiffnesses: the residual that rounding every free
+        // variable to the nearest double causes. A finely subdivided rod's bending stencils turn a
+        // coordinate's rounding εX into a force of order EI·εX/h³, which grows as N³ and exceeds
+        // the stretch estimate EA·εX/h used before from a few hundred edges per metre on
+        // (docs/design.md). Twice the measured value: one pattern of signs is typical, not worst.
+        // The noise is applied 1024 times larger and the response scaled back (it is linear):
+        // measured at its own size, the difference of two gradients would be as noisy as what it
+        // measures, and decisions against the floor would depend on the last bits.
+        const AMPLIFY: f64 = 1024.0;
+        let n = self.model.n_free;
+        let mut noise = vec![0.0; n];
+        self.model.rounding_noise(&mut noise);
+        let (mut g0, mut g1) = (vec![0.0; n], vec![0.0; n]);
+        self.trial_gradient(&noise, 0.0, &mut g0);
+        self.trial_gradient(&noise, AMPLIFY, &mut g1);
+        g1.iter_mut().zip(&g0).for_each(|(a, b)| *a -= b);
+        2.0 * self.model.relative_residual(&g1) / AMPLIFY
     }
     fn num_free(&self) -> usize {
         self.model.n_free
@@ -86,29 +134,76 @@ impl NewtonProblem for NetworkProblem<'_> {
         self.slots = self.model.hessian_slots(slots);
     }
     fn assemble(&self, grad: &mut [f64], hess: Option<&mut [f64]>) -> f64 {
-        self.model.assemble(&mut Assembly {
+        let e = self.model.assemble(&mut Assembly {
             grad,
             full_grad: None,
             hess: hess.map(|values| HessianOut {
                 values,
                 slots: &self.slots,
             }),
-        })
+        });
+        subtract(grad, &self.bias);
+        e + bias_energy(self.model, &self.bias)
     }
     fn energy(&self) -> f64 {
-        self.model.energy()
+        self.model.energy() + bias_energy(self.model, &self.bias)
     }
     fn trial_energy(&mut self, step: &[f64], alpha: f64) -> f64 {
-        self.displaced(step, alpha, |m| m.energy())
+        let b = std::mem::take(&mut self.bias);
+        let e = self.displaced(step, alpha, |m| m.energy() + bias_energy(m, &b));
+        self.bias = b;
+        e
     }
     fn trial_gradient(&mut self, step: &[f64], alpha: f64, grad: &mut [f64]) -> f64 {
-        self.displaced(step, alpha, |m| {
-            m.assemble(&mut Assembly {
+        let b = std::mem::take(&mut self.bias);
+        let e = self.displaced(step, alpha, |m| {
+            let e = m.assemble(&mut Assembly {
                 grad,
                 full_grad: None,
                 hess: None,
+            });
+            e + bias_energy(m, &b)
+        });
+        subtract(grad, &b);
+        self.bias = b;
+        e
+    }
+    fn orientation(&self, direction: &[f64]) -> f64 {
+        let Some(t) = self.toward else { return 0.0 };
+        let m = &*self.model;
+        (0..m.layout.n_nodes())
+            .map(|n| {
+                (0..3)
+                    .map(|k| {
+                        m.unknowns()
+                            .of_node(n, k)
+                            .map_or(0.0, |f| direction[f] * t[k])
+                    })
+                    .sum::<f64>()
             })
-        })
+            .sum()
+    }
+    fn excess_force(&mut self, step: &[f64], f: &mut [f64]) -> bool {
+        let m = &*self.model;
+        let k = m
+            .terms
+            .stretch
+            .iter()
+            .map(|s| (s.edge, s.ea / s.rest_length));
+        crate::network::projection::excess_force(
+            m.unknowns(),
+            &m.edge_nodes,
+            k,
+            &m.state.q,
+            step,
+            f,
+        )
+    }
+    fn limit_correction(&self, step: &[f64], c: &mut [f64]) {
+        let m = &*self.model;
+        if let Some(contact) = &m.contact {
+            contact.limit_correction(&m.state.q, m.unknowns(), step, c);
+        }
     }
     fn step_correction(&mut self, step: &[f64], c: &mut [f64]) -> bool {
         let m = &*self.model;

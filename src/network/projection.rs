@@ -9,7 +9,7 @@
 //! curve x + α d + α² c, which is tangent to d and stays on the Newton model's lengths to third
 //! order.
 
-use crate::math::vec::{dot, norm, normalize, sub};
+use crate::math::vec::{dot, norm, normalize, scalef, sub};
 use crate::solver::linalg::SparseCholesky;
 use crate::variables::Unknowns;
 
@@ -131,4 +131,47 @@ impl Projector {
         }
         true
     }
+}
+
+/// The stretch force that the first-order error of step `d` would create: for each stretched
+/// edge, k·s along the moved tangent, with s the excess of the moved edge's length over its
+/// linearized length and k = EA/l̄ (its axial stiffness). The solver maps it through the
+/// (regularized) Hessian, c = −H⁻¹f, which restores the lengths with the least energy of the
+/// Newton model instead of the least Euclidean motion. Returns false when there is nothing to
+/// correct.
+pub fn excess_force(
+    u: Unknowns,
+    edge_nodes: &[[usize; 2]],
+    stiffness: impl Iterator<Item = (usize, f64)>,
+    q: &[f64],
+    d: &[f64],
+    f: &mut [f64],
+) -> bool {
+    let step = |n: usize| std::array::from_fn(|k| u.of_node(n, k).map_or(0.0, |i| d[i]));
+    f.iter_mut().for_each(|v| *v = 0.0);
+    let mut any = false;
+    for (e, k) in stiffness {
+        let [a, b] = edge_nodes[e];
+        let ev = sub(u.layout.position(q, b), u.layout.position(q, a));
+        let de = sub(step(b), step(a));
+        let l = norm(ev);
+        let moved = [ev[0] + de[0], ev[1] + de[1], ev[2] + de[2]];
+        let s = norm(moved) - (l + dot(ev, de) / l);
+        if s.abs() <= 1e-14 * l {
+            continue;
+        }
+        any = true;
+        // Along the current tangent: the Hessian's axial stiffness acts there, and a component
+        // across it would be met by bending stiffness alone.
+        let t = scalef(ev, 1.0 / l);
+        for j in 0..3 {
+            if let Some(i) = u.of_node(b, j) {
+                f[i] += k * s * t[j];
+            }
+            if let Some(i) = u.of_node(a, j) {
+                f[i] -= k * s * t[j];
+            }
+        }
+    }
+    any
 }

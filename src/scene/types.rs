@@ -269,27 +269,37 @@ pub struct Reference {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub struct Solver {
-    #[serde(default = "default_tolerance")]
-    pub tolerance: f64,
+    /// Relative residual tolerance; None: automatic, `DEFAULT_TOLERANCE` or the round-off floor
+    /// of the final state where that is higher (docs/scene-format.md).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub tolerance: Option<f64>,
     #[serde(default = "default_max_iterations")]
     pub max_iterations: usize,
     #[serde(default = "one")]
     pub load_steps: usize,
+    /// Seconds after which the solve stops with its last iterate.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub time_limit: Option<f64>,
+    /// Which side a symmetric problem leaves its symmetric state toward (a direction in space);
+    /// the final equilibrium is the unperturbed problem's (docs/design.md).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub buckle_toward: Option<[f64; 3]>,
 }
 
-fn default_tolerance() -> f64 {
-    1e-9
-}
+pub const DEFAULT_TOLERANCE: f64 = 1e-9;
+
 fn default_max_iterations() -> usize {
-    200
+    1000
 }
 
 impl Default for Solver {
     fn default() -> Self {
         Solver {
-            tolerance: default_tolerance(),
+            tolerance: None,
             max_iterations: default_max_iterations(),
             load_steps: 1,
+            time_limit: None,
+            buckle_toward: None,
         }
     }
 }

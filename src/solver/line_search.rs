@@ -2,10 +2,13 @@
 
 use super::problem::NewtonProblem;
 
-/// Backtracking Armijo search along x + αd (+ α²c when a correction is given), from the
-/// problem's largest admissible step; with constraints, infeasible trials are backtracked too.
-/// The accepted step is left in `trial`. Near convergence the energy decrease falls below
-/// round-off; a relative slack of a few ulps lets Newton finish there.
+/// Backtracking Armijo search along x + αd + α²c for each candidate correction c (or along
+/// x + αd when there is none), from the problem's largest admissible step; with constraints,
+/// infeasible trials are backtracked too. At each α the candidate with the lowest energy among
+/// those that pass is taken; a later candidate must beat an earlier one by a thousandth of the
+/// decrease, so that near-ties do not depend on round-off (and scaled copies of a scene take
+/// the same path, tests/stiff.rs). The accepted step is left in `trial`. Near convergence the energy decrease
+/// falls below round-off; a relative slack of a few ulps lets Newton finish there.
 ///
 /// `trust` = (relative residual, scratch gradient) when the full step is a Newton step on a
 /// positive definite Hessian near convergence. If the full step then fails the Armijo test, it
@@ -16,44 +19,80 @@ use super::problem::NewtonProblem;
 /// the noise happens to favour and Newton creeps above the round-off floor, for a number of
 /// iterations that depends on the last bits of the data; the residual is the reliable judge
 /// there (docs/stiff.md section 3, `networks/extreme/nitinol_cross.ron`).
-#[allow(clippy::too_many_arguments)]
-pub(super) fn line_search<P: NewtonProblem>(
-    p: &mut P,
-    d: &[f64],
-    c: Option<&[f64]>,
-    e0: f64,
-    slope: f64,
-    trial: &mut [f64],
-    constrained: bool,
-    mut trust: Option<(f64, &mut [f64])>,
-) -> Option<f64> {
-    let slack = 64.0 * f64::EPSILON * e0.abs();
-    let fill = |alpha: f64, trial: &mut [f64]| {
-        for i in 0..d.len() {
-            trial[i] = alpha * d[i] + c.map_or(0.0, |c| alpha * alpha * c[i]);
+pub(super) struct Search<'a> {
+    pub d: &'a [f64],
+    pub corrections: &'a [&'a [f64]],
+    pub e0: f64,
+    pub slope: f64,
+    pub constrained: bool,
+}
+
+impl Search<'_> {
+    fn fill(&self, k: usize, alpha: f64, trial: &mut [f64]) {
+        let c = self.corrections.get(k);
+        for i in 0..self.d.len() {
+            trial[i] = alpha * self.d[i] + c.map_or(0.0, |c| alpha * alpha * c[i]);
         }
-    };
-    fill(1.0, trial);
-    let mut alpha = p.max_step(trial);
-    for _ in 0..60 {
-        fill(alpha, trial);
-        if constrained && !p.feasible(trial) {
-            alpha *= 0.5;
-            continue;
+    }
+
+    /// Largest α ≤ max_step(d) at which the first curve is admissible as a whole.
+    fn start<P: NewtonProblem>(&self, p: &P, trial: &mut [f64]) -> f64 {
+        let mut alpha = p.max_step(self.d);
+        for _ in 0..60 {
+            self.fill(0, alpha, trial);
+            let m = p.max_step(trial);
+            if m >= 1.0 {
+                break;
+            }
+            alpha *= m.max(0.5);
         }
-        let e = p.trial_energy(trial, 1.0);
-        if e.is_finite() && e <= e0 + 1e-4 * alpha * slope.min(0.0) + slack {
-            return Some(alpha);
-        }
-        if let Some((res, g)) = trust.take() {
-            if alpha == 1.0 && e.is_finite() {
-                p.trial_gradient(trial, 1.0, g);
-                if p.relative_residual(g) < 0.5 * res {
-                    return Some(alpha);
+        alpha
+    }
+
+    /// Returns the accepted α (the step is in `trial`), or None.
+    pub fn run<P: NewtonProblem>(
+        &self,
+        p: &mut P,
+        trial: &mut [f64],
+        mut trust: Option<(f64, &mut [f64])>,
+    ) -> Option<f64> {
+        let slack = 64.0 * f64::EPSILON * self.e0.abs();
+        let curves = self.corrections.len().max(1);
+        let mut alpha = self.start(p, trial);
+        for _ in 0..60 {
+            let mut best: Option<(usize, f64)> = None;
+            for k in 0..curves {
+                self.fill(k, alpha, trial);
+                if k > 0 && p.max_step(trial) < 1.0 {
+                    continue;
+                }
+                if self.constrained && !p.feasible(trial) {
+                    continue;
+                }
+                let e = p.trial_energy(trial, 1.0);
+                if e.is_finite()
+                    && e <= self.e0 + 1e-4 * alpha * self.slope.min(0.0) + slack
+                    && best.is_none_or(|(_, b)| e < b - 1e-3 * (self.e0 - b).abs())
+                {
+                    best = Some((k, e));
+                }
+                if k == 0 && best.is_none() {
+                    if let Some((res, g)) = trust.take() {
+                        if alpha == 1.0 && e.is_finite() {
+                            p.trial_gradient(trial, 1.0, g);
+                            if p.relative_residual(g) < 0.5 * res {
+                                return Some(alpha);
+                            }
+                        }
+                    }
                 }
             }
+            if let Some((k, _)) = best {
+                self.fill(k, alpha, trial);
+                return Some(alpha);
+            }
+            alpha *= 0.5;
         }
-        alpha *= 0.5;
+        None
     }
-    None
 }

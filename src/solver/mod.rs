@@ -1,13 +1,16 @@
 //! Newton's method on the total energy, its linear algebra, and its settings.
+pub mod continuation;
 pub mod linalg;
 pub mod line_search;
 pub mod newton;
 pub mod ordering;
 pub mod problem;
 pub mod qp;
+mod regularize;
 pub mod settings;
+mod step;
 
-pub use newton::solve;
+pub use continuation::solve;
 pub use ordering::Ordering;
 pub use problem::NewtonProblem;
 pub use settings::{ConstraintReport, NewtonReport, NewtonSettings, Progress};

@@ -10,7 +10,7 @@ pub trait NewtonProblem {
     /// Moves the free unknowns to current + `factor` × (current − `from`) (secant predictor).
     fn extrapolate(&mut self, from: &Self::Snapshot, factor: f64);
     /// Relative residual below which round-off dominates (see `relative_residual`).
-    fn residual_floor(&self) -> f64;
+    fn residual_floor(&mut self) -> f64;
     fn num_free(&self) -> usize;
     /// Upper-triangle (row ≤ col) pairs of the Hessian, every diagonal entry included.
     fn hessian_pattern(&self) -> Vec<(usize, usize)>;
@@ -29,6 +29,13 @@ pub trait NewtonProblem {
     fn step_correction(&mut self, _step: &[f64], _c: &mut [f64]) -> bool {
         false
     }
+    /// The force that the higher-order error of `step` would create in the stiffest terms
+    /// (stretch); the solver corrects the step by c = −H⁻¹f. False if none.
+    fn excess_force(&mut self, _step: &[f64], _f: &mut [f64]) -> bool {
+        false
+    }
+    /// Limits a correction so that the corrected step stays admissible (contact).
+    fn limit_correction(&self, _step: &[f64], _c: &mut [f64]) {}
     /// Largest admissible `alpha ≤ 1` for `step` (keeps the kinematics well defined).
     fn max_step(&self, step: &[f64]) -> f64;
     /// Moves by `alpha · step` and accepts the result as the new iterate.
@@ -47,6 +54,11 @@ pub trait NewtonProblem {
     }
     /// Sets the continuation parameter (load factor, prescribed motions) in [0, 1].
     fn set_continuation(&mut self, lambda: f64);
+    /// Which way `direction` leaves a symmetric state relative to the side the problem prefers
+    /// (positive: toward it); 0 when it has none. Signs the escape from saddles.
+    fn orientation(&self, _direction: &[f64]) -> f64 {
+        0.0
+    }
     /// Size of a perturbation along `direction` that is small for the problem's geometry.
     fn perturbation_size(&self, direction: &[f64]) -> f64;
     /// Characteristic size of each free unknown in its own unit (a length for positions, 1 for

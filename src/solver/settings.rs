@@ -12,6 +12,9 @@ pub type Progress = Arc<dyn Fn(usize, usize, f64, f64) + Send + Sync>;
 pub struct NewtonSettings {
     /// Relative residual tolerance (see `NewtonProblem::relative_residual`).
     pub tolerance: f64,
+    /// The tolerance was not asked for: a final state that round-off stalls below its floor
+    /// but above `tolerance` has converged, to the floor (reported as the tolerance used).
+    pub automatic_tolerance: bool,
     /// Newton iterations allowed per load step (its continuation sub-steps included).
     pub max_iterations: usize,
     /// Continuation steps from λ = 0 to 1.
@@ -19,16 +22,23 @@ pub struct NewtonSettings {
     pub progress: Option<Progress>,
     /// Fill-reducing ordering of the factorization.
     pub ordering: super::Ordering,
+    /// Seconds after which the solve stops with its last iterate (`stopped: "time limit"`).
+    pub time_limit: Option<f64>,
+    /// Solve at the end of the path (λ = 1) from the current state, without a path.
+    pub equilibrate_only: bool,
 }
 
 impl Default for NewtonSettings {
     fn default() -> Self {
         NewtonSettings {
             tolerance: 1e-9,
+            automatic_tolerance: false,
             max_iterations: 200,
             load_steps: 1,
             progress: None,
             ordering: super::Ordering::Auto,
+            time_limit: None,
+            equilibrate_only: false,
         }
     }
 }
@@ -37,10 +47,12 @@ impl std::fmt::Debug for NewtonSettings {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("NewtonSettings")
             .field("tolerance", &self.tolerance)
+            .field("automatic_tolerance", &self.automatic_tolerance)
             .field("max_iterations", &self.max_iterations)
             .field("load_steps", &self.load_steps)
             .field("progress", &self.progress.as_ref().map(|_| "closure"))
             .field("ordering", &self.ordering)
+            .field("time_limit", &self.time_limit)
             .finish()
     }
 }
@@ -55,12 +67,24 @@ impl NewtonSettings {
         self.tolerance = t;
         self
     }
+    pub fn automatic_tolerance(mut self, on: bool) -> Self {
+        self.automatic_tolerance = on;
+        self
+    }
     pub fn max_iterations(mut self, n: usize) -> Self {
         self.max_iterations = n;
         self
     }
     pub fn ordering(mut self, o: super::Ordering) -> Self {
         self.ordering = o;
+        self
+    }
+    pub fn time_limit(mut self, seconds: Option<f64>) -> Self {
+        self.time_limit = seconds;
+        self
+    }
+    pub fn equilibrate_only(mut self, on: bool) -> Self {
+        self.equilibrate_only = on;
         self
     }
     pub fn load_steps(mut self, n: usize) -> Self {
@@ -91,6 +115,14 @@ pub struct NewtonReport {
     pub factor_seconds: f64,
     /// Why the solve stopped when it did not converge.
     pub message: Option<String>,
+    /// The solve stopped below the round-off floor with the residual above the tolerance
+    /// (`converged` is then false).
+    pub stopped_at_floor: bool,
+    /// What stopped an unconverged solve early: "time limit".
+    pub stopped: Option<String>,
+    /// Iterations of a path followed under a temporary bias (`buckle_toward`), included in
+    /// `iterations`.
+    pub biased_iterations: usize,
     /// Continuation sub-steps taken (at least `load_steps`).
     pub substeps: usize,
     /// Sub-steps retried with a smaller increment.

@@ -285,7 +285,8 @@ impl Plan {
                     &settings,
                     |net, s| {
                         let t0 = Instant::now();
-                        let report = crate::network::solve(&mut net.model, s);
+                        let toward = scene.solver.buckle_toward;
+                        let report = crate::network::solve_toward(&mut net.model, s, toward);
                         seconds = t0.elapsed().as_secs_f64();
                         report
                     },

@@ -105,11 +105,28 @@ impl<'a> RodIndex<'a> {
 }
 
 fn solver(sv: &Solver) -> Result<(), FieldError> {
-    if !positive(sv.tolerance) {
+    if let Some(t) = sv.tolerance.filter(|t| !positive(*t)) {
         return Err(FieldError::global(
             "solver",
             "tolerance",
-            format!("must be positive, got {:e}", sv.tolerance),
+            format!("must be positive, got {t:e}"),
+        ));
+    }
+    if let Some(d) = sv.buckle_toward {
+        let n = d.iter().map(|x| x * x).sum::<f64>().sqrt();
+        if !(n.is_finite() && n > 1e-150) {
+            return Err(FieldError::global(
+                "solver",
+                "buckle_toward",
+                format!("must be a finite, non-zero direction, got {d:?}"),
+            ));
+        }
+    }
+    if let Some(t) = sv.time_limit.filter(|t| !positive(*t)) {
+        return Err(FieldError::global(
+            "solver",
+            "time_limit",
+            format!("must be a positive number of seconds, got {t:e}"),
         ));
     }
     if sv.max_iterations == 0 {

@@ -1,0 +1,265 @@
+//! The path from λ = 0 to 1: load steps, each reached through adaptive sub-steps, with Newton
+//! iterations (`newton.rs`) at each. What ends a solve, and how the report says so.
+
+use std::time::{Duration, Instant};
+
+use super::newton::{Limits, Newton, Outcome};
+use super::ordering::factorization;
+use super::problem::NewtonProblem;
+use super::qp::StepQp;
+use super::settings::{ConstraintReport, NewtonReport, NewtonSettings};
+
+/// Newton iterations a continuation sub-step may take before it is retried with a smaller
+/// increment (unless the increment is already minimal).
+const ATTEMPT_CAP: usize = 8;
+/// Smallest continuation increment, as a fraction of the whole load path.
+const MIN_INCREMENT: f64 = 1e-5;
+/// Residual to which intermediate continuation sub-steps are converged (or the solve's tolerance
+/// if looser): their states only start the next sub-step, and a few digits are enough for that;
+/// iterating them to round-off would spend iterations on states that are discarded.
+pub const INTERMEDIATE_TOLERANCE: f64 = 1e-6;
+
+pub fn solve<P: NewtonProblem>(p: &mut P, s: &NewtonSettings) -> NewtonReport {
+    let t0 = Instant::now();
+    let deadline = s
+        .time_limit
+        .map(|t| t0 + Duration::from_secs_f64(t.clamp(0.0, 1e9)));
+    let n = p.num_free();
+    let pairs = p.hessian_pattern();
+    let (chol, slots) = factorization(p, n, &pairs, s.ordering);
+    p.set_hessian_slots(&slots);
+    // Only a problem with constraints builds a QP; without, every step is the Cholesky solve.
+    let m = p.num_constraints();
+    let qp = (m > 0).then(|| StepQp::new(n, m, p.constraint_pattern()));
+    let mut st = Newton::new(chol, qp, n);
+    let steps = s.load_steps.max(1);
+    st.report.load_steps = steps;
+    st.report.tolerance = s.tolerance;
+    p.unknown_scales(&mut st.scales);
+    for (w, s) in st.weights.iter_mut().zip(&st.scales) {
+        *w = 1.0 / (s * s);
+    }
+    let mut path = Path {
+        deadline,
+        steps,
+        lam: 0.0,
+        inc: 1.0 / steps as f64,
+        start_iterations: 0,
+    };
+    path.follow(&mut st, p, s);
+    let r = &mut st.report;
+    r.seconds = t0.elapsed().as_secs_f64();
+    if let Some(qp) = &st.qp {
+        r.constraints = Some(ConstraintReport {
+            multipliers: qp.z.clone(),
+            qp_solves: qp.solves,
+            steps_without_qp: qp.skipped,
+            polished_qps: qp.polished,
+            inexact_qps: qp.inexact,
+            qp_iterations: qp.iterations,
+            qp_seconds: qp.seconds,
+        });
+    }
+    st.report
+}
+
+struct Path {
+    deadline: Option<Instant>,
+    steps: usize,
+    lam: f64,
+    /// Current sub-step increment of λ.
+    inc: f64,
+    /// Iterations spent equilibrating the start (reported with the first load step).
+    start_iterations: usize,
+}
+
+impl Path {
+    fn follow<P: NewtonProblem>(&mut self, st: &mut Newton, p: &mut P, s: &NewtonSettings) {
+        let trivial = s.equilibrate_only || p.continuation_is_trivial();
+        p.set_continuation(if trivial { 1.0 } else { 0.0 });
+        if trivial {
+            // Nothing moves along the path (a form-finding step with fixed supports and no
+            // loads): the solve is the start's equilibration, to the full tolerance.
+            let lim = self.limits(s.tolerance, s.max_iterations, false);
+            let outcome = st.iterate(p, s, &lim, self.steps);
+            st.report.substeps = 1;
+            st.report.step_iterations = vec![st.report.iterations];
+            finish(
+                st,
+                outcome,
+                (self.steps, self.steps),
+                st.report.iterations,
+                s,
+            );
+            return;
+        }
+        self.equilibrate_start(st, p, s);
+        let mut prev: Option<(f64, P::Snapshot)> = None;
+        for k in 1..=self.steps {
+            let its_before = st.report.iterations;
+            let reported_before = its_before - if k == 1 { self.start_iterations } else { 0 };
+            let outcome = self.load_step(st, p, s, k, its_before, &mut prev);
+            st.report
+                .step_iterations
+                .push(st.report.iterations - reported_before);
+            let last = k == self.steps;
+            let its = st.report.iterations - reported_before;
+            match outcome {
+                Outcome::Converged | Outcome::AtFloor if !last => {}
+                o => {
+                    finish(st, o, (k, self.steps), its, s);
+                    return;
+                }
+            }
+        }
+    }
+
+    /// A start that is not in equilibrium at λ = 0 (a form-finding guess; a rest state always
+    /// is) is equilibrated before the path starts: every sub-step then begins from an
+    /// equilibrium, and the start's own imbalance is not mistaken for a too-large increment.
+    fn equilibrate_start<P: NewtonProblem>(
+        &mut self,
+        st: &mut Newton,
+        p: &mut P,
+        s: &NewtonSettings,
+    ) {
+        if !(p.assemble(&mut st.g, None).is_finite() && p.relative_residual(&st.g) > s.tolerance) {
+            return;
+        }
+        let lim = self.limits(
+            s.tolerance.max(INTERMEDIATE_TOLERANCE),
+            s.max_iterations,
+            false,
+        );
+        let saved = p.snapshot();
+        match st.iterate(p, s, &lim, 0) {
+            Outcome::Converged | Outcome::AtFloor => st.report.substeps += 1,
+            // Not fatal: the path then starts from the guess itself, as it would without this.
+            _ => {
+                st.report.retries += 1;
+                p.restore(&saved);
+            }
+        }
+        self.start_iterations = st.report.iterations;
+    }
+
+    fn limits(&self, tolerance: f64, cap: usize, retry_on_damping: bool) -> Limits {
+        Limits {
+            tolerance,
+            cap,
+            deadline: self.deadline,
+            retry_on_damping,
+        }
+    }
+
+    /// Reaches λ = k/steps through sub-steps whose increment is quartered on failure and
+    /// doubles after easy convergence; a secant predictor from the last two converged states
+    /// starts each sub-step. `max_iterations` bounds the Newton iterations of the whole load
+    /// step, sub-steps and retries included.
+    fn load_step<P: NewtonProblem>(
+        &mut self,
+        st: &mut Newton,
+        p: &mut P,
+        s: &NewtonSettings,
+        k: usize,
+        its_before: usize,
+        prev: &mut Option<(f64, P::Snapshot)>,
+    ) -> Outcome {
+        let target = k as f64 / self.steps as f64;
+        let mut last = Outcome::Converged;
+        while self.lam < target {
+            let mut next = (self.lam + self.inc).min(target);
+            if target - next < 0.25 * self.inc {
+                next = target;
+            }
+            let saved = p.snapshot();
+            match &*prev {
+                Some((lp, snap)) if self.lam > *lp => {
+                    p.extrapolate(snap, ((next - self.lam) / (self.lam - lp)).min(2.0));
+                    p.set_continuation(next);
+                }
+                Some(_) => p.set_continuation(next),
+                None => st.tangent_predict(p, self.lam, next),
+            }
+            let minimal = self.inc <= MIN_INCREMENT * 1.0001;
+            let remaining = s
+                .max_iterations
+                .saturating_sub(st.report.iterations - its_before);
+            let last_chance = minimal || remaining <= ATTEMPT_CAP;
+            let cap = if minimal {
+                remaining
+            } else {
+                ATTEMPT_CAP.min(remaining)
+            };
+            let tolerance = if next == 1.0 {
+                s.tolerance
+            } else {
+                s.tolerance.max(INTERMEDIATE_TOLERANCE)
+            };
+            let lim = self.limits(tolerance, cap, !last_chance);
+            let before = st.report.iterations;
+            match st.iterate(p, s, &lim, k) {
+                o @ (Outcome::Converged | Outcome::AtFloor) => {
+                    st.report.substeps += 1;
+                    *prev = Some((self.lam, saved));
+                    self.lam = next;
+                    if st.report.iterations - before <= 5 {
+                        self.inc = (2.0 * self.inc).min(1.0 / self.steps as f64);
+                    }
+                    last = o;
+                }
+                Outcome::Budget(msg) if self.deadline.is_some_and(|t| Instant::now() >= t) => {
+                    return Outcome::Budget(msg)
+                }
+                o if last_chance => return o,
+                _ => {
+                    st.report.retries += 1;
+                    p.restore(&saved);
+                    self.inc = (0.25 * self.inc).max(MIN_INCREMENT);
+                }
+            }
+        }
+        last
+    }
+}
+
+/// Sets the report's verdict from the outcome that ended the solve.
+fn finish(st: &mut Newton, o: Outcome, (k, steps): (usize, usize), its: usize, s: &NewtonSettings) {
+    let r = &mut st.report;
+    let at = format!("load step {k}/{steps}");
+    match o {
+        Outcome::Converged => r.converged = true,
+        Outcome::AtFloor if s.automatic_tolerance => {
+            r.stopped_at_floor = true;
+            r.converged = true;
+            r.tolerance = r.residual_floor;
+        }
+        Outcome::AtFloor => {
+            r.stopped_at_floor = true;
+            r.message = Some(format!(
+                "stopped at the round-off floor at {at}: relative residual {:.3e} > tolerance \
+                 {:.1e}, but below the floor {:.3e} that rounding the unknowns to doubles \
+                 causes; the state is as close to equilibrium as floating point allows \
+                 (a tolerance above the floor is met)",
+                r.residual, s.tolerance, r.residual_floor
+            ));
+        }
+        Outcome::Budget(msg) => {
+            if msg.starts_with("time limit") {
+                r.stopped = Some("time limit".into());
+            }
+            r.message = Some(format!(
+                "no convergence at {at} within its budget of {} Newton iterations \
+                 ({its} used in this load step, {} in all): {msg}",
+                s.max_iterations, r.iterations
+            ));
+        }
+        Outcome::Failed(msg) => {
+            r.message = Some(format!(
+                "no convergence at {at} ({its} Newton iterations in this load step, {} in all, \
+                 tolerance {:.1e}): {msg}",
+                r.iterations, s.tolerance
+            ));
+        }
+    }
+}

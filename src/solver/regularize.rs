@@ -1,0 +1,128 @@
+//! Regularization of an indefinite Hessian (modified Newton) and the escape from saddles along
+//! negative curvature.
+
+use std::time::Instant;
+
+use super::newton::Newton;
+use super::problem::NewtonProblem;
+
+/// What the search for negative curvature at a stationary point found.
+pub(super) enum Saddle {
+    /// Only zero-energy modes (rigid rotations, free spin): a minimum up to those modes.
+    ZeroModesOnly,
+    Escaped,
+    /// Negative curvature, but no energy decrease along it within round-off.
+    NoDecrease,
+}
+
+impl Newton {
+    /// Factors H + τI with the smallest τ of the sequence 0, τ₀, 10τ₀, … that succeeds.
+    ///
+    /// The unshifted attempt is made at every iteration, even while it keeps failing: skipping
+    /// it would save a factorization per indefinite iteration, but the shift would then linger
+    /// (it decays ×10 per iteration) and turn Newton's final quadratic convergence linear.
+    pub(super) fn factor_regularized(&mut self) -> Option<f64> {
+        let ts = Instant::now();
+        let r = self.factor_regularized_inner();
+        self.report.factor_seconds += ts.elapsed().as_secs_f64();
+        r
+    }
+
+    fn factor_regularized_inner(&mut self) -> Option<f64> {
+        self.report.factorizations += 1;
+        if self.chol.factor(0.0).is_ok() {
+            self.shift_memory *= 0.1;
+            return Some(0.0);
+        }
+        let scale = self.scaled_diagonal().max(f64::MIN_POSITIVE);
+        let mut tau = (1e-10 * scale).max(0.1 * self.shift_memory);
+        while tau < 1e12 * scale {
+            self.report.factorizations += 1;
+            if self.chol.factor_weighted(tau, &self.weights).is_ok() {
+                self.shift_memory = tau;
+                return Some(tau);
+            }
+            tau *= 10.0;
+        }
+        None
+    }
+
+    /// Largest |H_ii|·s_i²: the diagonal scale of the Hessian of the dimensionless unknowns.
+    fn scaled_diagonal(&self) -> f64 {
+        (0..self.scales.len())
+            .map(|i| self.chol.diagonal(i).abs() * self.scales[i] * self.scales[i])
+            .fold(0.0, f64::max)
+    }
+
+    /// With H + τW factored (W = diag(1/s²)), finds the most negative curvature direction of
+    /// H for the dimensionless unknowns q/s by inverse iteration (the generalized eigenproblem
+    /// H u = λ W u) and moves downhill along it.
+    pub(super) fn escape_saddle<P: NewtonProblem>(&mut self, p: &mut P, e0: f64) -> Saddle {
+        let n = self.g.len();
+        if n == 0 {
+            return Saddle::ZeroModesOnly;
+        }
+        let (s, w) = (&self.scales, &self.weights);
+        // W-norm: the Euclidean norm of the dimensionless vector.
+        let norm_w = |v: &[f64]| v.iter().zip(w).map(|(x, w)| w * x * x).sum::<f64>().sqrt();
+        // Deterministic, generic start vector (in dimensionless unknowns).
+        let mut v: Vec<f64> = (0..n)
+            .map(|i| (1.0 + 0.5 * ((i as f64) * 0.7).sin()) * s[i])
+            .collect();
+        let mut hv = vec![0.0; n];
+        let mut lambda = 0.0;
+        for _ in 0..50 {
+            let nv = norm_w(&v);
+            v.iter_mut().for_each(|x| *x /= nv);
+            self.chol.multiply(&v, &mut hv);
+            let new_lambda: f64 = v.iter().zip(&hv).map(|(a, b)| a * b).sum();
+            let done = (new_lambda - lambda).abs() <= 1e-6 * new_lambda.abs();
+            lambda = new_lambda;
+            if done {
+                break;
+            }
+            v.iter_mut().zip(w).for_each(|(x, w)| *x *= w);
+            self.chol.solve(&mut v);
+        }
+        let nv = norm_w(&v);
+        v.iter_mut().for_each(|x| *x /= nv);
+        let scale = self.scaled_diagonal();
+        if lambda >= -1e-12 * scale {
+            return Saddle::ZeroModesOnly;
+        }
+        // The side the problem prefers (`buckle_toward`), else a deterministic sign: largest
+        // dimensionless component positive.
+        let side = p.orientation(&v);
+        let flip = if side != 0.0 {
+            side < 0.0
+        } else {
+            let imax = (0..n)
+                .max_by(|&a, &b| (v[a] / s[a]).abs().total_cmp(&(v[b] / s[b]).abs()))
+                .unwrap();
+            v[imax] < 0.0
+        };
+        if flip {
+            v.iter_mut().for_each(|x| *x = -*x);
+        }
+        let size = p.perturbation_size(&v);
+        v.iter_mut().for_each(|x| *x *= size);
+        let mut alpha = p.max_step(&v);
+        let constrained = self.qp.is_some();
+        for _ in 0..30 {
+            if constrained {
+                let scaled: Vec<f64> = v.iter().map(|x| alpha * x).collect();
+                if !p.feasible(&scaled) {
+                    alpha *= 0.5;
+                    continue;
+                }
+            }
+            let e = p.trial_energy(&v, alpha);
+            if e.is_finite() && e < e0 - 1e-12 * e0.abs() {
+                p.accept(&v, alpha);
+                return Saddle::Escaped;
+            }
+            alpha *= 0.5;
+        }
+        Saddle::NoDecrease
+    }
+}

@@ -1,0 +1,102 @@
+//! What a Newton iteration moves along besides −H⁻¹g: the corrections of the line search's curve,
+//! the first predictor of a path, and the constrained (QP) step.
+
+use std::time::Instant;
+
+use super::newton::Newton;
+use super::problem::NewtonProblem;
+
+impl Newton {
+    /// Second-order corrections of the step `d` for the line search's curves x + αd + α²c, in
+    /// `c` and `c2`; returns how many. First the energy-optimal one, c = −(H + τW)⁻¹f with f the
+    /// stretch force the step's first-order length error would create: it restores lengths the
+    /// way the structure's stiffness prefers. Then the problem's own geometric correction (the
+    /// smallest motion restoring lengths), which is better where a step turns edges by large
+    /// angles (a rod near a fold) but moves whole chains rigidly near clamps, more so the finer
+    /// the rod (docs/design.md).
+    pub(super) fn corrections<P: NewtonProblem>(&mut self, p: &mut P, shift: f64) -> usize {
+        let mut k = 0;
+        if shift == 0.0 && p.excess_force(&self.d, &mut self.c) {
+            self.chol.solve(&mut self.c);
+            self.c.iter_mut().for_each(|x| *x = -*x);
+            p.limit_correction(&self.d, &mut self.c);
+            // A correction is second order: one larger than the step itself (in dimensionless
+            // unknowns) comes from H⁻¹ amplifying round-off along a soft or zero-energy mode.
+            let w = &self.weights;
+            let norm = |v: &[f64]| v.iter().zip(w).map(|(x, w)| w * x * x).sum::<f64>();
+            if norm(&self.c) <= norm(&self.d) {
+                k = 1;
+            }
+        }
+        let buf = if k == 0 { &mut self.c } else { &mut self.c2 };
+        if p.step_correction(&self.d, buf) {
+            k += 1;
+        }
+        k
+    }
+
+    /// First sub-step of the path, from an equilibrium at `lam`: moves the free unknowns by the
+    /// linear response to the increment, δ = −H⁻¹ (g(λ_next) − g(λ)) at fixed free unknowns, so
+    /// that prescribed ends do not start by crushing their first edges. Kept only if it lowers
+    /// the energy at `next`. Later sub-steps use the secant through two equilibria instead (a
+    /// tangent predictor there leads a strut shortened past buckling onto its straight saddle;
+    /// docs/design.md).
+    pub(super) fn tangent_predict<P: NewtonProblem>(&mut self, p: &mut P, lam: f64, next: f64) {
+        let n = self.g.len();
+        if self.qp.is_some() {
+            // The linear response ignores contact and bounds: it could jump through an obstacle.
+            p.set_continuation(next);
+            return;
+        }
+        p.set_continuation(lam);
+        let e0 = p.assemble(&mut self.g, Some(&mut self.chol.values));
+        let factored = e0.is_finite() && self.factor_regularized().is_some();
+        p.set_continuation(next);
+        if !factored || n == 0 {
+            return;
+        }
+        let e1 = p.assemble(&mut self.d, None);
+        for i in 0..n {
+            self.d[i] = self.g[i] - self.d[i];
+        }
+        self.chol.solve(&mut self.d);
+        let alpha = p.max_step(&self.d).min(1.0);
+        let e = p.trial_energy(&self.d, alpha);
+        if e.is_finite() && e < e1 {
+            p.accept(&self.d, alpha);
+        }
+    }
+
+    /// Factors H + τI as for an unconstrained step, then solves the step QP with it at the
+    /// current iterate. Returns the shift and the relative stationarity residual.
+    pub(super) fn constrained_step<P: NewtonProblem>(
+        &mut self,
+        p: &mut P,
+    ) -> Result<(f64, f64), String> {
+        let shift = self
+            .factor_regularized()
+            .ok_or_else(|| "Hessian could not be regularized".to_string())?;
+        for i in 0..self.d.len() {
+            self.d[i] = -self.g[i];
+        }
+        let ts = Instant::now();
+        self.chol.solve(&mut self.d);
+        self.report.factor_seconds += ts.elapsed().as_secs_f64();
+        let qp = self.qp.as_mut().expect("constrained problem");
+        p.constraints(&mut qp.c, &mut qp.jac);
+        // The QP is convex: when the unconstrained minimizer of its model satisfies the
+        // linearized constraints, it is the QP's solution, with zero multipliers. Then Clarabel
+        // is not needed, and a constraint that is never active leaves every iterate exactly as
+        // without it.
+        if qp.admits(&self.d) {
+            qp.z.fill(0.0);
+            qp.skipped += 1;
+            self.qp_used = false;
+            return Ok((shift, p.relative_residual(&self.g)));
+        }
+        qp.solve(&mut self.chol, &self.g, &mut self.d)?;
+        self.qp_used = true;
+        qp.stationarity(&self.g, &mut self.r);
+        Ok((shift, p.relative_residual(&self.r)))
+    }
+}
