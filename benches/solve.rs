@@ -63,3 +63,16 @@ fn constraints_removed(bencher: divan::Bencher, name: &str) {
     s.bounds.clear();
     bencher.bench(|| run(&s));
 }
+
+/// The cantilever of `networks/cantilever.ron` with its tip load raised to PL²/EI = 5, refined
+/// from 10 to 10⁴ edges, default solver settings (issue 12: iterations flat in N).
+#[divan::bench(args = [10, 100, 1000, 10000], sample_count = 3, sample_size = 1)]
+fn refined_cantilever(bencher: divan::Bencher, n: usize) {
+    let mut s = load("cantilever");
+    s.rods[0].subdivide = n;
+    s.solver = Default::default();
+    if let rodnet::scene::types::Load::Force { force, .. } = &mut s.loads[0] {
+        force[1] *= 2.5;
+    }
+    bencher.bench(|| run(&s));
+}
