@@ -31,7 +31,7 @@ pub fn solve_scene(scene: &Scene, settings: &NewtonSettings) -> Result<Solution,
     run(
         scene,
         settings,
-        |net, s| crate::network::solve_toward(&mut net.model, s, scene.solver.buckle_toward),
+        |net, s| crate::network::solve_toward(net, s, scene.solver.buckle_toward),
         |_, _| {},
     )
 }

@@ -270,3 +270,88 @@ fn a_convergence_study_runs_ten_levels() {
         .unwrap_or_else(|| panic!("{stdout}"));
     assert!((order - 2.0).abs() < 0.05, "{stdout}");
 }
+
+const PORTAL: &str = r#"Scene(
+    materials: { "s": Material(young_modulus: 2e11, poisson_ratio: 0.3, section: Circle(radius: 0.02)) },
+    rods: [
+        Rod(name: "left", material: "s", points: [(0.0, 0.0, 0.0), (0.0, 0.0, 3.0)], subdivide: 10),
+        Rod(name: "beam", material: "s", points: [(0.0, 0.0, 3.0), (4.0, 0.0, 3.0)], subdivide: 10),
+        Rod(name: "right", material: "s", points: [(4.0, 0.0, 3.0), (4.0, 0.0, 0.0)], subdivide: 10),
+    ],
+    joints: [
+        Joint(name: "a", at: [("left", 1), ("beam", 0)], kind: Rigid),
+        Joint(name: "b", at: [("beam", 1), ("right", 0)], kind: Rigid),
+    ],
+    supports: [
+        Support(rod: "left", vertex: 0, kind: Pin),
+        Support(rod: "right", vertex: 1, kind: Pin),
+    ],
+    loads: [ Force(rod: "beam", vertex: 0, force: (1000.0, 0.0, -500.0)) ],
+)"#;
+
+/// A portal frame on two pins can turn out of its plane about the line through the pins. Before,
+/// it "converged" to an unstable state with exit 0; now the mechanism is named, exit 1.
+#[test]
+fn a_pinned_portal_is_reported_as_a_mechanism() {
+    let d = tmpdir("portal");
+    let scene = d.join("portal.ron");
+    std::fs::write(&scene, PORTAL).unwrap();
+    let json = d.join("r.json");
+    let out = rodnet()
+        .args([
+            "solve",
+            scene.to_str().unwrap(),
+            "--json",
+            json.to_str().unwrap(),
+        ])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(1));
+    let v: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    assert_eq!(v["converged"], false);
+    let m = v["mechanism"]["description"].as_str().unwrap();
+    assert!(
+        m.contains(r#"rotation of rods "left", "beam", "right" about the line through"#)
+            && m.contains("along (1.0000, 0.0000, 0.0000)"),
+        "{m}"
+    );
+    assert!(String::from_utf8_lossy(&out.stderr).contains("mechanism: rotation"));
+
+    // Clamped feet resist the turn: no mechanism, and the frame is stable.
+    let clamped = PORTAL.replace("kind: Pin", "kind: Clamp");
+    let sol = solve(&rodnet::scene::parse("clamped.ron", &clamped).unwrap());
+    assert!(sol.results.converged && sol.results.mechanism.is_none());
+    assert!(sol.report.stable);
+}
+
+/// An unsupported ring pulled apart by two balanced forces: its rigid translations are removed
+/// by a gauge node (said in the JSON), and it converges to the same shape in any case.
+#[test]
+fn an_unsupported_ring_under_balanced_loads_is_gauged() {
+    let ring = |s: usize| {
+        format!(
+            r#"Scene(
+    materials: {{ "s": Material(young_modulus: 1e9, poisson_ratio: 0.3, section: Circle(radius: 0.01)) }},
+    rods: [ Rod(name: "ring", material: "s", points: [(1.0, 0.0, 0.0), (0.0, 1.0, 0.0), (-1.0, 0.0, 0.0), (0.0, -1.0, 0.0)], subdivide: {s}, closed: true) ],
+    loads: [ Force(rod: "ring", vertex: 0, force: (50.0, 0.0, 0.0)), Force(rod: "ring", vertex: 2, force: (-50.0, 0.0, 0.0)) ],
+)"#
+        )
+    };
+    let mut widths = vec![];
+    for s in [8, 16] {
+        let sol = solve(&rodnet::scene::parse("ring.ron", &ring(s)).unwrap());
+        let r = &sol.results;
+        assert!(r.converged, "{:?}", sol.report.message);
+        assert!(r.gauge.as_deref().unwrap().contains("no supports"));
+        let p = &r.rods[0].points;
+        // The distance between the loaded vertices (nodes 0 and 2·s), pulled apart.
+        let w = (0..3)
+            .map(|k| (p[0][k] - p[2 * s][k]).powi(2))
+            .sum::<f64>()
+            .sqrt();
+        assert!(w > 2.0 && w < 2.7, "s = {s}: width {w}");
+        widths.push(w);
+    }
+    assert!((widths[0] - widths[1]).abs() < 0.02, "{widths:?}");
+}

@@ -82,6 +82,13 @@ pub struct TargetJson {
     pub rms_net_distance: Option<f64>,
 }
 
+/// The `mechanism` block of the results JSON.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct MechanismJson {
+    /// Which rods move and how (a rotation names its axis), m.
+    pub description: String,
+}
+
 #[derive(Debug, Clone, Default, Serialize, Deserialize)]
 pub struct SolverJson {
     pub factorizations: usize,
@@ -169,6 +176,12 @@ pub struct Results {
     /// What stopped an unconverged solve early ("time limit").
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub stopped: Option<String>,
+    /// A zero-stiffness mode that the loads excite: the solve stopped at its start.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub mechanism: Option<MechanismJson>,
+    /// How the rigid translations of an unsupported structure were removed.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub gauge: Option<String>,
     #[serde(default)]
     pub energy: EnergyJson,
     pub rods: Vec<RodJson>,
@@ -259,6 +272,10 @@ impl Results {
             tolerance: report.tolerance,
             stopped_at_floor: report.stopped_at_floor,
             stopped: report.stopped.clone(),
+            mechanism: report.mechanism.as_ref().map(|d| MechanismJson {
+                description: d.clone(),
+            }),
+            gauge: eq.gauge.clone(),
             energy: eq.energy.into(),
             rods,
             joints,

@@ -9,23 +9,24 @@
 
 use crate::network::model::Model;
 use crate::network::problem::NetworkProblem;
+use crate::network::Network;
 use crate::solver::{NewtonReport, NewtonSettings};
 
 /// Total bias force over the force scale: small against the loads that shape the structure,
 /// large against round-off, so that it decides the side and nothing else.
 const BIAS: f64 = 1e-2;
 
-/// Solves `model`, leaving symmetric states toward `toward` when given.
+/// Solves `net`, leaving symmetric states toward `toward` when given.
 pub fn solve(
-    model: &mut Model,
+    net: &mut Network,
     settings: &NewtonSettings,
     toward: Option<[f64; 3]>,
 ) -> NewtonReport {
     let Some(t) = toward else {
-        return crate::network::solve(model, settings);
+        return NetworkProblem::of_network(net).solve(settings);
     };
-    let bias = bias_forces(model, t);
-    let mut p = NetworkProblem::new(model);
+    let bias = bias_forces(&net.model, t);
+    let mut p = NetworkProblem::of_network(net);
     p.set_bias(bias, Some(t));
     let biased = p.solve(settings);
     if !biased.converged && !biased.stopped_at_floor {

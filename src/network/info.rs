@@ -34,6 +34,24 @@ pub struct SupportInfo {
     pub frame: Option<usize>,
 }
 
+/// The node held in place to remove the rigid translations of an unsupported structure.
+#[derive(Debug, Clone)]
+pub struct Gauge {
+    pub node: usize,
+    pub rod: String,
+    /// Index of the node in the rod's nodes.
+    pub index: usize,
+}
+
+impl Gauge {
+    pub fn describe(&self) -> String {
+        format!(
+            "the scene has no supports: rigid translations are removed by holding node {} of rod \"{}\" in place (its reaction is the loads' net force, zero)",
+            self.index, self.rod
+        )
+    }
+}
+
 #[derive(Debug, Clone)]
 pub struct JointInfo {
     pub name: String,

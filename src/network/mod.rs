@@ -9,6 +9,7 @@ pub mod contact;
 pub mod equilibrium;
 pub mod info;
 pub mod joint;
+pub mod mechanism;
 pub mod model;
 pub mod positions;
 pub mod problem;
@@ -17,7 +18,7 @@ pub mod rest;
 
 pub use buckle::solve as solve_toward;
 pub use build::build;
-pub use info::{JointInfo, RodInfo, SupportInfo};
+pub use info::{Gauge, JointInfo, RodInfo, SupportInfo};
 pub use model::Model;
 pub use problem::{solve, NetworkProblem};
 
@@ -28,6 +29,8 @@ pub struct Network {
     pub rods: Vec<RodInfo>,
     pub supports: Vec<SupportInfo>,
     pub joints: Vec<JointInfo>,
+    /// Unsupported structures only (`build/gauge.rs`).
+    pub gauge: Option<Gauge>,
 }
 
 impl Network {

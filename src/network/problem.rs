@@ -5,6 +5,7 @@
 use crate::network::assembly::{Assembly, HessianOut, HessianSlots};
 use crate::network::model::Model;
 use crate::network::projection::Projector;
+use crate::network::{Network, RodInfo};
 use crate::solver::{NewtonProblem, NewtonReport, NewtonSettings};
 use crate::variables::{State, VarKind};
 
@@ -19,6 +20,9 @@ pub struct NetworkProblem<'m> {
     bias: Vec<f64>,
     /// The side a symmetric state should be left toward, for the saddle escape's sign.
     toward: Option<[f64; 3]>,
+    /// The rods (to name a mechanism) and the gauge node of an unsupported structure.
+    rods: &'m [RodInfo],
+    gauge_node: Option<usize>,
 }
 
 impl<'m> NetworkProblem<'m> {
@@ -30,7 +34,20 @@ impl<'m> NetworkProblem<'m> {
             saved_q: Vec::new(),
             bias: Vec::new(),
             toward: None,
+            rods: &[],
+            gauge_node: None,
         }
+    }
+
+    /// The adapter of a whole network: mechanisms are then named by rod.
+    pub fn of_network(net: &'m mut Network) -> Self {
+        let Network {
+            model, rods, gauge, ..
+        } = net;
+        let mut p = NetworkProblem::new(model);
+        p.rods = rods;
+        p.gauge_node = gauge.as_ref().map(|g| g.node);
+        p
     }
 
     /// Leaves symmetric states toward `toward`, with the bias force `bias` on the free unknowns
@@ -167,6 +184,19 @@ impl NewtonProblem for NetworkProblem<'_> {
         subtract(grad, &b);
         self.bias = b;
         e
+    }
+    fn mechanism(&mut self, modes: &[Vec<f64>]) -> Option<String> {
+        // The load vector: what λ = 1 adds to the gradient at the current state (dead loads,
+        // and the pull of prescribed motions on the free unknowns).
+        let lam = self.model.state.load_factor;
+        let n = self.model.n_free;
+        let (mut g0, mut g1) = (vec![0.0; n], vec![0.0; n]);
+        self.assemble(&mut g0, None);
+        self.set_continuation(1.0);
+        self.assemble(&mut g1, None);
+        self.set_continuation(lam);
+        g1.iter_mut().zip(&g0).for_each(|(a, b)| *a -= b);
+        crate::network::mechanism::describe(self.model, self.rods, self.gauge_node, modes, &g1)
     }
     fn orientation(&self, direction: &[f64]) -> f64 {
         let Some(t) = self.toward else { return 0.0 };

@@ -179,7 +179,11 @@ impl Path {
                     p.set_continuation(next);
                 }
                 Some(_) => p.set_continuation(next),
-                None => st.tangent_predict(p, self.lam, next),
+                None => {
+                    if let Err(m) = st.tangent_predict(p, self.lam, next) {
+                        return Outcome::Mechanism(m);
+                    }
+                }
             }
             let minimal = self.inc <= MIN_INCREMENT * 1.0001;
             let remaining = s
@@ -253,6 +257,10 @@ fn finish(st: &mut Newton, o: Outcome, (k, steps): (usize, usize), its: usize, s
                  ({its} used in this load step, {} in all): {msg}",
                 s.max_iterations, r.iterations
             ));
+        }
+        Outcome::Mechanism(msg) => {
+            r.message = Some(format!("mechanism: {msg}"));
+            r.mechanism = Some(msg);
         }
         Outcome::Failed(msg) => {
             r.message = Some(format!(

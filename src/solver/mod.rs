@@ -2,6 +2,7 @@
 pub mod continuation;
 pub mod linalg;
 pub mod line_search;
+mod modes;
 pub mod newton;
 pub mod ordering;
 pub mod problem;

@@ -40,6 +40,8 @@ pub(super) enum Outcome {
     /// The iteration budget or the time limit ran out (`cap` or `deadline`).
     Budget(String),
     Failed(String),
+    /// A zero-stiffness mode that the loads excite (its description).
+    Mechanism(String),
 }
 
 /// Limits of one call of `Newton::iterate`.

@@ -59,6 +59,12 @@ pub trait NewtonProblem {
     fn orientation(&self, _direction: &[f64]) -> f64 {
         0.0
     }
+    /// Given zero-stiffness modes of the start (W-orthonormal vectors over the free unknowns),
+    /// describes the mechanism they contain that the loads or prescribed motions excite, or
+    /// None (no such mode: gauge modes, modes the loads do not touch).
+    fn mechanism(&mut self, _modes: &[Vec<f64>]) -> Option<String> {
+        None
+    }
     /// Size of a perturbation along `direction` that is small for the problem's geometry.
     fn perturbation_size(&self, direction: &[f64]) -> f64;
     /// Characteristic size of each free unknown in its own unit (a length for positions, 1 for

@@ -48,7 +48,7 @@ impl Newton {
     }
 
     /// Largest |H_ii|·s_i²: the diagonal scale of the Hessian of the dimensionless unknowns.
-    fn scaled_diagonal(&self) -> f64 {
+    pub(super) fn scaled_diagonal(&self) -> f64 {
         (0..self.scales.len())
             .map(|i| self.chol.diagonal(i).abs() * self.scales[i] * self.scales[i])
             .fold(0.0, f64::max)

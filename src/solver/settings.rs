@@ -120,6 +120,8 @@ pub struct NewtonReport {
     pub stopped_at_floor: bool,
     /// What stopped an unconverged solve early: "time limit".
     pub stopped: Option<String>,
+    /// A zero-stiffness mode of the structure that its loads excite (the solve stopped there).
+    pub mechanism: Option<String>,
     /// Iterations of a path followed under a temporary bias (`buckle_toward`), included in
     /// `iterations`.
     pub biased_iterations: usize,

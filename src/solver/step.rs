@@ -6,6 +6,14 @@ use std::time::Instant;
 use super::newton::Newton;
 use super::problem::NewtonProblem;
 
+/// Lowest modes examined for zero stiffness at the start of a path.
+const ZERO_MODES: usize = 6;
+/// Eigenvalue, relative to the Hessian's scaled diagonal, below which a mode counts as having
+/// zero stiffness (round-off leaves about 1e-15; the softest bending mode of a fibre with
+/// r/L = 1e-5 on 100 edges is about 2.5e-13, and the rigidity test of
+/// `NewtonProblem::mechanism` separates the two).
+const ZERO_EIGENVALUE: f64 = 1e-10;
+
 impl Newton {
     /// Second-order corrections of the step `d` for the line search's curves x + αd + α²c, in
     /// `c` and `c2`; returns how many. First the energy-optimal one, c = −(H + τW)⁻¹f with f the
@@ -41,19 +49,46 @@ impl Newton {
     /// the energy at `next`. Later sub-steps use the secant through two equilibria instead (a
     /// tangent predictor there leads a strut shortened past buckling onto its straight saddle;
     /// docs/design.md).
-    pub(super) fn tangent_predict<P: NewtonProblem>(&mut self, p: &mut P, lam: f64, next: f64) {
+    ///
+    /// With the Hessian at `lam` factored, this is also where zero-stiffness modes of the start
+    /// are looked for: a mechanism that the loads excite is returned as Err with its
+    /// description (`NewtonProblem::mechanism`).
+    pub(super) fn tangent_predict<P: NewtonProblem>(
+        &mut self,
+        p: &mut P,
+        lam: f64,
+        next: f64,
+    ) -> Result<(), String> {
         let n = self.g.len();
         if self.qp.is_some() {
             // The linear response ignores contact and bounds: it could jump through an obstacle.
+            // (Nor are mechanisms looked for: contact is what holds a rod lying on a floor.)
             p.set_continuation(next);
-            return;
+            return Ok(());
         }
         p.set_continuation(lam);
         let e0 = p.assemble(&mut self.g, Some(&mut self.chol.values));
-        let factored = e0.is_finite() && self.factor_regularized().is_some();
+        let shift = if e0.is_finite() {
+            self.factor_regularized()
+        } else {
+            None
+        };
+        if shift.is_some_and(|s| s > 0.0) || (shift.is_some() && self.near_singular()) {
+            let zero: Vec<Vec<f64>> = self
+                .lowest_modes(ZERO_MODES)
+                .into_iter()
+                .filter(|(l, _)| l.abs() < ZERO_EIGENVALUE)
+                .map(|(_, v)| v)
+                .collect();
+            if let Some(m) = (!zero.is_empty()).then(|| p.mechanism(&zero)).flatten() {
+                return Err(m);
+            }
+            // The modes' solves left the factor intact, but `g` must be the gradient again.
+            p.assemble(&mut self.g, None);
+        }
         p.set_continuation(next);
-        if !factored || n == 0 {
-            return;
+        if shift.is_none() || n == 0 {
+            return Ok(());
         }
         let e1 = p.assemble(&mut self.d, None);
         for i in 0..n {
@@ -65,6 +100,7 @@ impl Newton {
         if e.is_finite() && e < e1 {
             p.accept(&self.d, alpha);
         }
+        Ok(())
     }
 
     /// Factors H + τI as for an unconstrained step, then solves the step QP with it at the

@@ -286,7 +286,7 @@ impl Plan {
                     |net, s| {
                         let t0 = Instant::now();
                         let toward = scene.solver.buckle_toward;
-                        let report = crate::network::solve_toward(&mut net.model, s, toward);
+                        let report = crate::network::solve_toward(net, s, toward);
                         seconds = t0.elapsed().as_secs_f64();
                         report
                     },

@@ -6,9 +6,11 @@
 //! [`geometry`] (rest shape) → [`frames`] (joints, kinks, clamps, torques: vertex frames and
 //! node merges) → [`nodes`] (global nodes and edges) → [`supports`] (fixed and prescribed
 //! variables) → [`terms`] (stretch, bend and twist stencils, ports, joint springs) → [`loads`]
-//! (point loads, gravity, torques, and the force scale).
+//! (point loads, gravity, torques, and the force scale); [`gauge`] holds a node of an
+//! unsupported structure.
 
 mod frames;
+mod gauge;
 mod geometry;
 mod loads;
 mod nodes;
@@ -39,6 +41,7 @@ pub fn build(scene: &Scene) -> Result<Network, FieldError> {
         .max(net.rest_lengths.iter().cloned().fold(0.0, f64::max));
     let mut fixed = initially_fixed(&layout, &joined.table);
     let supported = supports::apply(&rest, &net, &joined.table, &layout, &mut fixed)?;
+    let gauge = gauge::apply(scene, &net, &layout, &mut fixed);
     let mut q = vec![0.0; layout.len()];
     for (n, p) in net.rest_pos.iter().enumerate() {
         layout.set_position(&mut q, n, *p);
@@ -98,6 +101,7 @@ pub fn build(scene: &Scene) -> Result<Network, FieldError> {
         rods: net.rods,
         supports: supported.infos,
         joints,
+        gauge,
     })
 }
 

@@ -65,6 +65,8 @@ pub struct Equilibrium {
     pub target: Option<TargetCheck>,
     pub reference: Option<ReferenceCheck>,
     pub free_unknowns: usize,
+    /// Unsupported structures: how their rigid translations were removed.
+    pub gauge: Option<String>,
 }
 
 impl Equilibrium {
@@ -128,6 +130,7 @@ impl Equilibrium {
             constraints,
             target: scene.target.as_ref().map(|t| target::check(net, t)),
             reference: reference::check(net, scene),
+            gauge: net.gauge.as_ref().map(|g| g.describe()),
             free_unknowns: m.n_free,
         }
     }

@@ -1,0 +1,254 @@
+//! Mechanisms: zero-stiffness modes of a structure that its loads excite.
+//!
+//! The solver hands over the zero-stiffness modes of the start of the path (the lowest
+//! eigenvectors of the Hessian with eigenvalue ≈ 0). A mode is a mechanism when the rods that move
+//! in it move rigidly (a legitimately soft bending mode of a very slender rod deforms its rod) and
+//! a loaded or driven node moves in it. An unsupported structure's rigid rotations are gauge
+//! modes, not mechanisms: they are projected out first (its translations are removed by the
+//! gauge node, `build/gauge.rs`). The description names the rods and, when they turn together as
+//! one rigid body, the axis.
+
+use crate::math::vec::{cross, dot, norm, scalef, sub};
+use crate::network::info::RodInfo;
+use crate::network::model::Model;
+use crate::variables::VarKind;
+
+/// Part of a mode's motion (W-norm) that must remain after removing gauge rotations.
+const REMAINING: f64 = 1e-3;
+/// Largest residual of a rigid-motion fit, relative to the motion, for a rod to move rigidly.
+const RIGID: f64 = 1e-3;
+
+/// The first mode that is an excited mechanism, described; `f` is the load vector over free
+/// unknowns (the gradient change from λ = 0 to 1 at the current state).
+pub fn describe(
+    model: &Model,
+    rods: &[RodInfo],
+    gauge_node: Option<usize>,
+    modes: &[Vec<f64>],
+    f: &[f64],
+) -> Option<String> {
+    let mut scales = vec![1.0; model.n_free];
+    model.unknown_scales(&mut scales);
+    let w: Vec<f64> = scales.iter().map(|s| 1.0 / (s * s)).collect();
+    let gauges: Vec<Vec<f64>> = gauge_node.map_or_else(Vec::new, |g| rotations(model, g, &w));
+    for mode in modes {
+        let mut v = mode.clone();
+        for r in &gauges {
+            let c = wdot(&v, r, &w);
+            v.iter_mut().zip(r).for_each(|(x, r)| *x -= c * r);
+        }
+        if wdot(&v, &v, &w).sqrt() < REMAINING {
+            continue;
+        }
+        if let Some(d) = mechanism(model, rods, &v, f) {
+            return Some(d);
+        }
+    }
+    None
+}
+
+fn wdot(a: &[f64], b: &[f64], w: &[f64]) -> f64 {
+    a.iter().zip(b).zip(w).map(|((x, y), w)| w * x * y).sum()
+}
+
+/// The three rigid rotations about the gauge node (positions ω × (x − x_g), vertex frames ω),
+/// W-orthonormalized.
+fn rotations(model: &Model, gauge: usize, w: &[f64]) -> Vec<Vec<f64>> {
+    let u = model.unknowns();
+    let xg = model.position(gauge);
+    let mut out: Vec<Vec<f64>> = Vec::new();
+    for k in 0..3 {
+        let mut omega = [0.0; 3];
+        omega[k] = 1.0;
+        let mut r = vec![0.0; model.n_free];
+        for n in 0..model.layout.n_nodes() {
+            let m = cross(omega, sub(model.position(n), xg));
+            for (j, mj) in m.iter().enumerate() {
+                if let Some(i) = u.of_node(n, j) {
+                    r[i] = *mj;
+                }
+            }
+        }
+        for f in 0..model.layout.n_frames() {
+            for (j, v) in model.layout.frame(f).into_iter().enumerate() {
+                if let Some(i) = u.of(v) {
+                    r[i] = omega[j];
+                }
+            }
+        }
+        for q in &out {
+            let c = wdot(&r, q, w);
+            r.iter_mut().zip(q).for_each(|(x, q)| *x -= c * q);
+        }
+        let nr = wdot(&r, &r, w).sqrt();
+        if nr > 1e-12 {
+            r.iter_mut().for_each(|x| *x /= nr);
+            out.push(r);
+        }
+    }
+    out
+}
+
+/// Motion of node `n` in mode `v` (zero for fixed coordinates).
+fn motion(model: &Model, v: &[f64], n: usize) -> [f64; 3] {
+    let u = model.unknowns();
+    std::array::from_fn(|k| u.of_node(n, k).map_or(0.0, |i| v[i]))
+}
+
+fn mechanism(model: &Model, rods: &[RodInfo], v: &[f64], f: &[f64]) -> Option<String> {
+    let nn = model.layout.n_nodes();
+    let moves: Vec<f64> = (0..nn).map(|n| norm(motion(model, v, n))).collect();
+    let loads: Vec<f64> = (0..nn).map(|n| norm(motion(model, f, n))).collect();
+    let (vmax, fmax) = (max(&moves), max(&loads));
+    if vmax == 0.0 {
+        return None;
+    }
+    let moving = |n: usize| moves[n] > 1e-3 * vmax;
+    // Excited: a loaded (or driven) node moves, or a loaded angle (a torque) turns.
+    let node_loaded = (0..nn).any(|n| moving(n) && loads[n] > 1e-9 * fmax.max(f64::MIN_POSITIVE));
+    let angle_loaded = model.free.iter().enumerate().any(|(var, &i)| {
+        i != crate::variables::FIXED
+            && model.kind(var) == VarKind::Angle
+            && f[i as usize].abs() > 1e-12 * fmax.max(1e-300) * model.length_scale
+            && v[i as usize].abs() > 1e-6
+    });
+    if fmax == 0.0 || !(node_loaded || angle_loaded) {
+        return None;
+    }
+    let moving_rods: Vec<&RodInfo> = rods
+        .iter()
+        .filter(|r| r.nodes.iter().any(|&n| moving(n)))
+        .collect();
+    // Every moving rod moves rigidly: otherwise this is a soft elastic mode, not a mechanism.
+    for r in &moving_rods {
+        let (_, residual) = rigid_fit(model, v, &r.nodes)?;
+        if residual > RIGID {
+            return None;
+        }
+    }
+    let names: Vec<String> = moving_rods
+        .iter()
+        .map(|r| format!("\"{}\"", r.name))
+        .collect();
+    let nodes: Vec<usize> = (0..nn).filter(|&n| moving(n)).collect();
+    let rods_text = format!(
+        "rod{} {}",
+        if names.len() == 1 { "" } else { "s" },
+        names.join(", ")
+    );
+    let what = match rigid_fit(model, v, &nodes) {
+        Some(((t, omega, c), res)) if res <= RIGID => axis_text(t, omega, c, vmax, &rods_text),
+        _ => format!("rigid motions of {rods_text} (a linkage)"),
+    };
+    Some(format!(
+        "{what}: it costs no elastic energy and the loads act on it (add supports or joints that \
+         resist it)"
+    ))
+}
+
+fn max(v: &[f64]) -> f64 {
+    v.iter().cloned().fold(0.0, f64::max)
+}
+
+type Rigid = ([f64; 3], [f64; 3], [f64; 3]);
+
+/// Least-squares rigid motion v(x) = t + ω × (x − c) of `nodes` (c their centroid), and the
+/// residual relative to the motion.
+fn rigid_fit(model: &Model, v: &[f64], nodes: &[usize]) -> Option<(Rigid, f64)> {
+    if nodes.is_empty() {
+        return None;
+    }
+    let k = nodes.len() as f64;
+    let c = nodes.iter().fold([0.0; 3], |a, &n| {
+        let p = model.position(n);
+        [a[0] + p[0] / k, a[1] + p[1] / k, a[2] + p[2] / k]
+    });
+    let t = nodes.iter().fold([0.0; 3], |a, &n| {
+        let m = motion(model, v, n);
+        [a[0] + m[0] / k, a[1] + m[1] / k, a[2] + m[2] / k]
+    });
+    // ω from Σ r × (v − t) = J ω, J = Σ (|r|² I − r rᵀ) (the inertia tensor of the nodes).
+    let mut j = [[0.0; 3]; 3];
+    let mut b = [0.0; 3];
+    for &n in nodes {
+        let r = sub(model.position(n), c);
+        let m = sub(motion(model, v, n), t);
+        let rr = dot(r, r);
+        for a in 0..3 {
+            for e in 0..3 {
+                j[a][e] += if a == e { rr } else { 0.0 } - r[a] * r[e];
+            }
+        }
+        let x = cross(r, m);
+        (0..3).for_each(|a| b[a] += x[a]);
+    }
+    let omega = solve3(j, b);
+    let (mut res, mut tot) = (0.0, 0.0);
+    for &n in nodes {
+        let r = sub(model.position(n), c);
+        let fit = crate::math::vec::add(t, cross(omega, r));
+        let m = motion(model, v, n);
+        res += dot(sub(m, fit), sub(m, fit));
+        tot += dot(m, m);
+    }
+    Some(((t, omega, c), (res / tot.max(f64::MIN_POSITIVE)).sqrt()))
+}
+
+/// Solves the 3×3 system J ω = b in least squares (a line of nodes leaves rotation about
+/// itself undetermined: the pseudo-inverse drops it).
+fn solve3(j: [[f64; 3]; 3], b: [f64; 3]) -> [f64; 3] {
+    let tr = j[0][0] + j[1][1] + j[2][2];
+    let mut m = j;
+    // Tikhonov with a tiny fraction of the trace: the undetermined part stays zero.
+    (0..3).for_each(|a| m[a][a] += 1e-12 * tr.max(f64::MIN_POSITIVE));
+    let det = |m: &[[f64; 3]; 3]| {
+        m[0][0] * (m[1][1] * m[2][2] - m[1][2] * m[2][1])
+            - m[0][1] * (m[1][0] * m[2][2] - m[1][2] * m[2][0])
+            + m[0][2] * (m[1][0] * m[2][1] - m[1][1] * m[2][0])
+    };
+    let d = det(&m);
+    if d == 0.0 {
+        return [0.0; 3];
+    }
+    std::array::from_fn(|k| {
+        let mut mk = m;
+        (0..3).for_each(|a| mk[a][k] = b[a]);
+        det(&mk) / d
+    })
+}
+
+/// "rotation of rods … about the line through P along D", or a translation.
+fn axis_text(t: [f64; 3], omega: [f64; 3], c: [f64; 3], vmax: f64, rods: &str) -> String {
+    let w = norm(omega);
+    // -0.0000 reads as a different number: print zeros as zeros.
+    let fmt = |p: [f64; 3]| {
+        let z = |x: f64| if x.abs() < 5e-5 { 0.0 } else { x };
+        format!("({:.4}, {:.4}, {:.4})", z(p[0]), z(p[1]), z(p[2]))
+    };
+    // Deterministic sign of a direction: its largest component positive.
+    let signed = |d: [f64; 3]| {
+        let k = (0..3)
+            .max_by(|&a, &b| d[a].abs().total_cmp(&d[b].abs()))
+            .unwrap_or(0);
+        if d[k] < 0.0 {
+            scalef(d, -1.0)
+        } else {
+            d
+        }
+    };
+    // A rotation whose largest motion over the nodes is negligible against the translation.
+    let reach = vmax.max(norm(t));
+    if w == 0.0 || w * 1e9 < reach {
+        let d = signed(scalef(t, 1.0 / norm(t).max(f64::MIN_POSITIVE)));
+        return format!("translation of {rods} along {}", fmt(d));
+    }
+    // The axis: points where the motion is along ω only, p = c + ω × t_⊥ / |ω|².
+    let axis = scalef(omega, 1.0 / w);
+    let t_perp = sub(t, scalef(axis, dot(t, axis)));
+    let p = crate::math::vec::add(c, scalef(cross(omega, t_perp), 1.0 / (w * w)));
+    format!(
+        "rotation of {rods} about the line through {} along {}",
+        fmt(p),
+        fmt(signed(axis))
+    )
+}

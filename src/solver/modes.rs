@@ -1,0 +1,187 @@
+//! The lowest eigenpairs of the Hessian, H u = λ W u in the solver's dimensionless metric W, by
+//! subspace (block inverse) iteration with the factor of H + τW already computed, and a
+//! Rayleigh–Ritz step on the subspace. Used to find zero-stiffness modes (mechanisms) at the
+//! start of a path.
+
+use super::newton::Newton;
+
+impl Newton {
+    /// One step of inverse iteration from a generic vector with the current factor: a growth
+    /// beyond 1/ZERO of the scaled diagonal means an eigenvalue below ZERO (relative), which a
+    /// Cholesky factorization of a singular matrix can hide behind a round-off pivot.
+    pub(super) fn near_singular(&mut self) -> bool {
+        const ZERO: f64 = 1e-10;
+        let n = self.g.len();
+        let (s, w) = (&self.scales, &self.weights);
+        let r: Vec<f64> = (0..n)
+            .map(|i| (1.0 + 0.5 * ((i as f64) * 1.3).sin()) * s[i])
+            .collect();
+        let norm_w = |v: &[f64]| v.iter().zip(w).map(|(x, w)| w * x * x).sum::<f64>().sqrt();
+        let mut x: Vec<f64> = r.iter().zip(w).map(|(r, w)| r * w).collect();
+        self.chol.solve(&mut x);
+        let growth = norm_w(&x) / norm_w(&r).max(f64::MIN_POSITIVE);
+        growth * self.scaled_diagonal() > 1.0 / ZERO
+    }
+
+    /// Up to `k` lowest eigenpairs (λ relative to the Hessian's scaled diagonal, W-normalized
+    /// vectors), ascending. Needs `chol` factored (with any shift) and its values holding H.
+    pub(super) fn lowest_modes(&mut self, k: usize) -> Vec<(f64, Vec<f64>)> {
+        let n = self.g.len();
+        let k = k.min(n);
+        if k == 0 {
+            return Vec::new();
+        }
+        let w = self.weights.clone();
+        let s = self.scales.clone();
+        let mut v: Vec<Vec<f64>> = (0..k)
+            .map(|j| {
+                (0..n)
+                    .map(|i| (1.0 + 0.5 * ((i as f64) * (0.7 + 0.31 * j as f64)).sin()) * s[i])
+                    .collect()
+            })
+            .collect();
+        let mut hv = vec![0.0; n];
+        let mut last: Vec<f64> = vec![f64::INFINITY; k];
+        let mut pairs = Vec::new();
+        for _ in 0..60 {
+            orthonormalize(&mut v, &w);
+            // Rayleigh–Ritz on span(v).
+            let hvs: Vec<Vec<f64>> = v
+                .iter()
+                .map(|x| {
+                    self.chol.multiply(x, &mut hv);
+                    hv.clone()
+                })
+                .collect();
+            let a: Vec<Vec<f64>> = (0..v.len())
+                .map(|i| (0..v.len()).map(|j| dot(&v[i], &hvs[j])).collect())
+                .collect();
+            let (vals, vecs) = jacobi(a);
+            let rotated: Vec<Vec<f64>> = (0..v.len())
+                .map(|c| {
+                    let mut x = vec![0.0; n];
+                    for (r, vr) in v.iter().enumerate() {
+                        let f = vecs[r][c];
+                        x.iter_mut().zip(vr).for_each(|(x, y)| *x += f * y);
+                    }
+                    x
+                })
+                .collect();
+            let done = vals
+                .iter()
+                .zip(&last)
+                .all(|(a, b)| (a - b).abs() <= 1e-10 * a.abs().max(1e-300));
+            last = vals.clone();
+            pairs = vals.into_iter().zip(rotated.clone()).collect();
+            if done {
+                break;
+            }
+            // One step of inverse iteration: v ← (H + τW)⁻¹ W v.
+            v = rotated;
+            for x in &mut v {
+                x.iter_mut().zip(&w).for_each(|(x, w)| *x *= w);
+                self.chol.solve(x);
+            }
+        }
+        let scale = self.scaled_diagonal().max(f64::MIN_POSITIVE);
+        pairs.sort_by(|a, b| a.0.total_cmp(&b.0));
+        pairs.into_iter().map(|(l, v)| (l / scale, v)).collect()
+    }
+}
+
+fn dot(a: &[f64], b: &[f64]) -> f64 {
+    a.iter().zip(b).map(|(x, y)| x * y).sum()
+}
+
+/// Gram–Schmidt in the W inner product; vectors that vanish are dropped.
+fn orthonormalize(v: &mut Vec<Vec<f64>>, w: &[f64]) {
+    let wdot = |a: &[f64], b: &[f64]| {
+        a.iter()
+            .zip(b)
+            .zip(w)
+            .map(|((x, y), w)| w * x * y)
+            .sum::<f64>()
+    };
+    let mut out: Vec<Vec<f64>> = Vec::with_capacity(v.len());
+    for mut x in v.drain(..) {
+        for _ in 0..2 {
+            for q in &out {
+                let c = wdot(&x, q);
+                x.iter_mut().zip(q).for_each(|(x, q)| *x -= c * q);
+            }
+        }
+        let nx = wdot(&x, &x).sqrt();
+        if nx > 1e-300 && nx.is_finite() {
+            x.iter_mut().for_each(|y| *y /= nx);
+            out.push(x);
+        }
+    }
+    *v = out;
+}
+
+/// Eigenvalues and eigenvectors (columns) of a small symmetric matrix, cyclic Jacobi.
+fn jacobi(mut a: Vec<Vec<f64>>) -> (Vec<f64>, Vec<Vec<f64>>) {
+    let k = a.len();
+    let mut e: Vec<Vec<f64>> = (0..k)
+        .map(|i| (0..k).map(|j| f64::from(i == j)).collect())
+        .collect();
+    for _ in 0..100 {
+        let off: f64 = (0..k)
+            .flat_map(|i| (0..k).filter(move |&j| j != i).map(move |j| (i, j)))
+            .map(|(i, j)| a[i][j] * a[i][j])
+            .sum();
+        let diag: f64 = (0..k).map(|i| a[i][i] * a[i][i]).sum();
+        if off <= 1e-30 * diag.max(1e-300) {
+            break;
+        }
+        for p in 0..k {
+            for q in p + 1..k {
+                if a[p][q] == 0.0 {
+                    continue;
+                }
+                let theta = 0.5 * (a[q][q] - a[p][p]) / a[p][q];
+                let t = theta.signum() / (theta.abs() + (theta * theta + 1.0).sqrt());
+                let t = if theta == 0.0 { 1.0 } else { t };
+                let c = 1.0 / (t * t + 1.0).sqrt();
+                let s = t * c;
+                for r in 0..k {
+                    let (arp, arq) = (a[r][p], a[r][q]);
+                    a[r][p] = c * arp - s * arq;
+                    a[r][q] = s * arp + c * arq;
+                }
+                for r in 0..k {
+                    let (apr, aqr) = (a[p][r], a[q][r]);
+                    a[p][r] = c * apr - s * aqr;
+                    a[q][r] = s * apr + c * aqr;
+                }
+                for r in 0..k {
+                    let (erp, erq) = (e[r][p], e[r][q]);
+                    e[r][p] = c * erp - s * erq;
+                    e[r][q] = s * erp + c * erq;
+                }
+            }
+        }
+    }
+    ((0..k).map(|i| a[i][i]).collect(), e)
+}
+
+#[cfg(test)]
+mod tests {
+    use super::jacobi;
+
+    #[test]
+    fn jacobi_diagonalizes_a_symmetric_matrix() {
+        let a = vec![
+            vec![4.0, 1.0, 0.5],
+            vec![1.0, 3.0, 0.2],
+            vec![0.5, 0.2, 1.0],
+        ];
+        let (vals, vecs) = jacobi(a.clone());
+        for c in 0..3 {
+            for r in 0..3 {
+                let av: f64 = (0..3).map(|j| a[r][j] * vecs[j][c]).sum();
+                assert!((av - vals[c] * vecs[r][c]).abs() < 1e-12);
+            }
+        }
+    }
+}
