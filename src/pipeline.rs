@@ -22,6 +22,10 @@ pub fn settings_of(scene: &Scene) -> NewtonSettings {
         .tolerance(scene.solver.tolerance.unwrap_or(DEFAULT_TOLERANCE))
         .automatic_tolerance(scene.solver.tolerance.is_none())
         .time_limit(scene.solver.time_limit)
+        .continuation(match scene.solver.continuation {
+            crate::scene::types::Continuation::Load => crate::solver::Continuation::Load,
+            crate::scene::types::Continuation::ArcLength => crate::solver::Continuation::ArcLength,
+        })
         .max_iterations(scene.solver.max_iterations)
         .load_steps(scene.solver.load_steps)
 }

@@ -355,3 +355,85 @@ fn an_unsupported_ring_under_balanced_loads_is_gauged() {
     }
     assert!((widths[0] - widths[1]).abs() < 0.02, "{widths:?}");
 }
+
+/// A shallow pyramid of four bars (pinned feet, Ball joint at the apex, one edge each: stretch
+/// only) under a dead load at the apex above its limit load: snap-through. The equilibrium path
+/// is P(y) = 4EA(1 − l/l₀)·y/l, l = √(d² + y²), with y the apex height; its maximum over
+/// 0 < y < h is the limit load.
+fn pyramid(load: f64, continuation: &str) -> String {
+    format!(
+        r#"Scene(
+    materials: {{ "s": Material(young_modulus: 1e9, poisson_ratio: 0.3, section: Circle(radius: 0.01)) }},
+    rods: [
+        Rod(name: "a", material: "s", points: [(1.0, 0.0, 0.0), (0.0, 0.0, 0.1)]),
+        Rod(name: "b", material: "s", points: [(-1.0, 0.0, 0.0), (0.0, 0.0, 0.1)]),
+        Rod(name: "c", material: "s", points: [(0.0, 1.0, 0.0), (0.0, 0.0, 0.1)]),
+        Rod(name: "d", material: "s", points: [(0.0, -1.0, 0.0), (0.0, 0.0, 0.1)]),
+    ],
+    joints: [ Joint(name: "apex", at: [("a", 1), ("b", 1), ("c", 1), ("d", 1)], kind: Ball) ],
+    supports: [
+        Support(rod: "a", vertex: 0, kind: Pin), Support(rod: "b", vertex: 0, kind: Pin),
+        Support(rod: "c", vertex: 0, kind: Pin), Support(rod: "d", vertex: 0, kind: Pin),
+    ],
+    loads: [ Force(rod: "a", vertex: 1, force: (0.0, 0.0, -{load})) ],
+    solver: Solver({continuation}),
+)"#
+    )
+}
+
+fn pyramid_support(y: f64) -> f64 {
+    let ea = 1e9 * std::f64::consts::PI * 1e-4;
+    let (l, l0) = ((1.0 + y * y).sqrt(), (1.0f64 + 0.01).sqrt());
+    4.0 * ea * (1.0 - l / l0) * y / l
+}
+
+/// Golden-section search for the largest support force over 0 < y < 0.1.
+fn pyramid_limit_load() -> f64 {
+    let (mut a, mut b) = (0.0, 0.1);
+    let g = (5f64.sqrt() - 1.0) / 2.0;
+    for _ in 0..200 {
+        let (c, d) = (b - g * (b - a), a + g * (b - a));
+        if pyramid_support(c) > pyramid_support(d) {
+            b = d;
+        } else {
+            a = c;
+        }
+    }
+    pyramid_support(0.5 * (a + b))
+}
+
+/// Arc length follows the pyramid through its limit point to the inverted state, and reports
+/// the limit load factor; the analytic one is P_max/P.
+#[test]
+fn arc_length_follows_a_snap_through_and_finds_its_limit_load() {
+    let load = 400.0;
+    let scene = pyramid(load, "continuation: ArcLength");
+    let sol = solve(&rodnet::scene::parse("pyramid.ron", &scene).unwrap());
+    let r = &sol.results;
+    assert!(r.converged, "{:?}", sol.report.message);
+    let c = r.continuation.as_ref().expect("arc-length block");
+    let exact = pyramid_limit_load() / load;
+    let first = c.limit_points[0].load_factor;
+    assert!(
+        (first - exact).abs() < 1e-7,
+        "limit load factor {first} against {exact}"
+    );
+    // The path turns down through the flat state to the mirror limit, then up again.
+    assert!(
+        (c.limit_points[1].load_factor + exact).abs() < 1e-6,
+        "{:?}",
+        c.limit_points
+    );
+    // The final state: the inverted pyramid in tension carrying the load, P(y) = 400 N.
+    let y = r.joints[0].position[2];
+    assert!(
+        y < -0.1 && (pyramid_support(y) - load).abs() < 1e-6 * load,
+        "apex at {y}"
+    );
+    // Below the limit load the path has no limit point and ends on the near branch.
+    let below =
+        solve(&rodnet::scene::parse("p.ron", &pyramid(200.0, "continuation: ArcLength")).unwrap());
+    let c = below.results.continuation.as_ref().unwrap();
+    assert!(c.limit_points.is_empty() && below.results.joints[0].position[2] > 0.0);
+    assert!((pyramid_support(below.results.joints[0].position[2]) - 200.0).abs() < 1e-6 * 200.0);
+}

@@ -289,6 +289,7 @@ pub fn load(path: &std::path::Path, a: &NetworkArgs) -> Result<NetworkScene, Str
             load_steps: a.load_steps.unwrap_or(defaults.load_steps),
             time_limit: None,
             buckle_toward: None,
+            continuation: Default::default(),
         },
     };
     let generated = obj_import::to_scene(&obj, &opts).map_err(at)?;

@@ -233,6 +233,7 @@ pub fn footprint(spec: &HemisphereSpec) -> Footprint {
             load_steps: spec.load_steps,
             time_limit: None,
             buckle_toward: None,
+            continuation: Default::default(),
         },
     };
     Footprint {

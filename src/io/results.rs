@@ -82,6 +82,15 @@ pub struct TargetJson {
     pub rms_net_distance: Option<f64>,
 }
 
+/// The `continuation` block of the results JSON (arc-length paths).
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct ContinuationJson {
+    pub kind: String,
+    pub steps: usize,
+    /// Where the load factor stopped rising (or falling) along the path.
+    pub limit_points: Vec<crate::solver::LimitPoint>,
+}
+
 /// The `mechanism` block of the results JSON.
 #[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct MechanismJson {
@@ -179,6 +188,9 @@ pub struct Results {
     /// A zero-stiffness mode that the loads excite: the solve stopped at its start.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub mechanism: Option<MechanismJson>,
+    /// Arc-length continuation only: its steps and the limit points met on the path.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub continuation: Option<ContinuationJson>,
     /// How the rigid translations of an unsupported structure were removed.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub gauge: Option<String>,
@@ -276,6 +288,11 @@ impl Results {
                 description: d.clone(),
             }),
             gauge: eq.gauge.clone(),
+            continuation: (report.arc_length_steps > 0).then(|| ContinuationJson {
+                kind: "arc_length".into(),
+                steps: report.arc_length_steps,
+                limit_points: report.limit_points.clone(),
+            }),
             energy: eq.energy.into(),
             rods,
             joints,

@@ -284,6 +284,23 @@ pub struct Solver {
     /// the final equilibrium is the unperturbed problem's (docs/design.md).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub buckle_toward: Option<[f64; 3]>,
+    /// `Load` (default: increments of the load factor) or `ArcLength` (through limit points).
+    #[serde(default, skip_serializing_if = "is_load")]
+    pub continuation: Continuation,
+}
+
+/// How the path from the rest state to the full loads is followed.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, Deserialize)]
+pub enum Continuation {
+    /// Increments of the load factor, adaptive.
+    #[default]
+    Load,
+    /// Pseudo-arclength: follows the path through limit points (snap-through).
+    ArcLength,
+}
+
+fn is_load(c: &Continuation) -> bool {
+    *c == Continuation::Load
 }
 
 pub const DEFAULT_TOLERANCE: f64 = 1e-9;
@@ -300,6 +317,7 @@ impl Default for Solver {
             load_steps: 1,
             time_limit: None,
             buckle_toward: None,
+            continuation: Continuation::Load,
         }
     }
 }

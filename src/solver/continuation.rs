@@ -94,6 +94,13 @@ impl Path {
             return;
         }
         self.equilibrate_start(st, p, s);
+        if s.continuation == super::Continuation::ArcLength && st.qp.is_none() {
+            let outcome = super::arc_length::follow(st, p, s, self.deadline);
+            let its = st.report.iterations;
+            st.report.step_iterations = vec![its];
+            finish(st, outcome, (self.steps, self.steps), its, s);
+            return;
+        }
         let mut prev: Option<(f64, P::Snapshot)> = None;
         for k in 1..=self.steps {
             let its_before = st.report.iterations;

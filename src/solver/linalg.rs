@@ -3,10 +3,11 @@
 //! refactors numerically, optionally with a diagonal shift.
 
 use faer::dyn_stack::{MemBuffer, MemStack};
+use faer::linalg::cholesky::ldlt::factor::LdltRegularization;
 use faer::linalg::cholesky::llt::factor::LltRegularization;
 use faer::perm::PermRef;
 use faer::sparse::linalg::cholesky::{
-    factorize_symbolic_cholesky, CholeskySymbolicParams, LltRef, SymbolicCholesky,
+    factorize_symbolic_cholesky, CholeskySymbolicParams, LdltRef, LltRef, SymbolicCholesky,
     SymmetricOrdering,
 };
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMat};
@@ -24,6 +25,10 @@ pub struct SparseCholesky {
     factor_mem: MemBuffer,
     solve_mem: MemBuffer,
     factored: bool,
+    /// LDLᵀ factor values and scratch, allocated on first use (arc-length continuation).
+    ldlt: Vec<f64>,
+    ldlt_mem: MemBuffer,
+    ldlt_factored: bool,
 }
 
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -111,6 +116,9 @@ impl SparseCholesky {
                 factor_mem,
                 solve_mem,
                 factored: false,
+                ldlt: Vec::new(),
+                ldlt_mem: MemBuffer::new(faer::dyn_stack::StackReq::EMPTY),
+                ldlt_factored: false,
             },
             slot,
         )
@@ -185,6 +193,42 @@ impl SparseCholesky {
         } else {
             Err(NotPositiveDefinite)
         }
+    }
+
+    /// Numeric LDLᵀ factorization of the unshifted A, without pivoting: A may be indefinite (an
+    /// equilibrium path past a limit point), not singular. Kept apart from the LLᵀ factor.
+    pub fn factor_ldlt(&mut self) -> Result<(), NotPositiveDefinite> {
+        if self.ldlt.is_empty() {
+            self.ldlt = vec![0.0; self.symbolic.len_val()];
+            self.ldlt_mem = MemBuffer::new(
+                self.symbolic
+                    .factorize_numeric_ldlt_scratch::<f64>(Par::Seq, Default::default()),
+            );
+        }
+        let a = SparseColMatRef::new(self.pattern.as_ref(), &self.values);
+        let r = self.symbolic.factorize_numeric_ldlt(
+            &mut self.ldlt,
+            a,
+            Side::Upper,
+            LdltRegularization::default(),
+            Par::Seq,
+            MemStack::new(&mut self.ldlt_mem),
+            Default::default(),
+        );
+        self.ldlt_factored = r.is_ok() && self.ldlt.iter().all(|v| v.is_finite());
+        if self.ldlt_factored {
+            Ok(())
+        } else {
+            Err(NotPositiveDefinite)
+        }
+    }
+
+    /// Solves A x = rhs in place with the last successful LDLᵀ factorization.
+    pub fn solve_ldlt(&mut self, rhs: &mut [f64]) {
+        assert!(self.ldlt_factored, "solve without an LDLᵀ factorization");
+        let f = LdltRef::<usize, f64>::new(&self.symbolic, &self.ldlt);
+        let m = MatMut::from_column_major_slice_mut(rhs, self.n, 1);
+        f.solve_in_place_with_conj(Conj::No, m, Par::Seq, MemStack::new(&mut self.solve_mem));
     }
 
     /// Solves (A + shift·I) x = rhs in place with the last successful factorization.

@@ -1,4 +1,5 @@
 //! Newton's method on the total energy, its linear algebra, and its settings.
+pub mod arc_length;
 pub mod continuation;
 pub mod linalg;
 pub mod line_search;
@@ -14,4 +15,6 @@ mod step;
 pub use continuation::solve;
 pub use ordering::Ordering;
 pub use problem::NewtonProblem;
-pub use settings::{ConstraintReport, NewtonReport, NewtonSettings, Progress};
+pub use settings::{
+    ConstraintReport, Continuation, LimitPoint, NewtonReport, NewtonSettings, Progress,
+};

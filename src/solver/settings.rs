@@ -26,6 +26,25 @@ pub struct NewtonSettings {
     pub time_limit: Option<f64>,
     /// Solve at the end of the path (λ = 1) from the current state, without a path.
     pub equilibrate_only: bool,
+    /// How the path from λ = 0 to 1 is followed.
+    pub continuation: Continuation,
+}
+
+/// How the path from λ = 0 to 1 is followed.
+#[derive(Debug, Clone, Copy, Default, PartialEq, Eq, Serialize, serde::Deserialize)]
+pub enum Continuation {
+    /// Increments of λ (load control), adaptive: `continuation.rs`.
+    #[default]
+    Load,
+    /// Pseudo-arclength: through limit points, `arc_length.rs`.
+    ArcLength,
+}
+
+/// A limit point met on an arc-length path: λ there and the step after which it was seen.
+#[derive(Debug, Clone, Copy, Serialize, serde::Deserialize, PartialEq)]
+pub struct LimitPoint {
+    pub load_factor: f64,
+    pub step: usize,
 }
 
 impl Default for NewtonSettings {
@@ -39,6 +58,7 @@ impl Default for NewtonSettings {
             ordering: super::Ordering::Auto,
             time_limit: None,
             equilibrate_only: false,
+            continuation: Continuation::Load,
         }
     }
 }
@@ -53,6 +73,7 @@ impl std::fmt::Debug for NewtonSettings {
             .field("progress", &self.progress.as_ref().map(|_| "closure"))
             .field("ordering", &self.ordering)
             .field("time_limit", &self.time_limit)
+            .field("continuation", &self.continuation)
             .finish()
     }
 }
@@ -81,6 +102,10 @@ impl NewtonSettings {
     }
     pub fn time_limit(mut self, seconds: Option<f64>) -> Self {
         self.time_limit = seconds;
+        self
+    }
+    pub fn continuation(mut self, c: Continuation) -> Self {
+        self.continuation = c;
         self
     }
     pub fn equilibrate_only(mut self, on: bool) -> Self {
@@ -122,6 +147,9 @@ pub struct NewtonReport {
     pub stopped: Option<String>,
     /// A zero-stiffness mode of the structure that its loads excite (the solve stopped there).
     pub mechanism: Option<String>,
+    /// Arc-length continuation only: its steps and the limit points met.
+    pub arc_length_steps: usize,
+    pub limit_points: Vec<LimitPoint>,
     /// Iterations of a path followed under a temporary bias (`buckle_toward`), included in
     /// `iterations`.
     pub biased_iterations: usize,
