@@ -171,9 +171,9 @@ impl HemisphereRun {
         let status = if !r.converged {
             "NOT converged"
         } else if r.solver.stable {
-            "converged, stable (Hessian positive definite up to zero-energy modes)"
+            "converged, stable (Hessian positive definite)"
         } else {
-            "converged, UNSTABLE (the Hessian has a direction of negative curvature)"
+            "converged, NOT STABLE (a direction of negative curvature or of zero stiffness)"
         };
         let _ = writeln!(
             t,

@@ -108,6 +108,10 @@ pub struct SolverJson {
     pub free_unknowns: usize,
     pub step_iterations: Vec<usize>,
     pub message: Option<String>,
+    /// Zero-stiffness modes of the final state other than gauge modes (then `stable` is false:
+    /// neutral equilibrium).
+    #[serde(default)]
+    pub zero_modes: usize,
     /// Iterations of the path under the `buckle_toward` bias (included in `iterations`).
     #[serde(default)]
     pub biased_iterations: usize,
@@ -307,6 +311,7 @@ impl Results {
                 factor_seconds: report.factor_seconds,
                 free_unknowns: eq.free_unknowns,
                 step_iterations: report.step_iterations.clone(),
+                zero_modes: report.zero_modes,
                 biased_iterations: report.biased_iterations,
                 message: report.message.clone(),
             },

@@ -47,12 +47,31 @@ pub fn describe(
     None
 }
 
+/// Whether every mode lies in the span of an unsupported structure's rigid rotations.
+pub fn gauge_only(model: &Model, gauge_node: Option<usize>, modes: &[Vec<f64>]) -> bool {
+    let Some(g) = gauge_node else {
+        return false;
+    };
+    let mut scales = vec![1.0; model.n_free];
+    model.unknown_scales(&mut scales);
+    let w: Vec<f64> = scales.iter().map(|s| 1.0 / (s * s)).collect();
+    let gauges = rotations(model, g, &w);
+    modes.iter().all(|mode| {
+        let mut v = mode.clone();
+        for r in &gauges {
+            let c = wdot(&v, r, &w);
+            v.iter_mut().zip(r).for_each(|(x, r)| *x -= c * r);
+        }
+        wdot(&v, &v, &w).sqrt() < REMAINING
+    })
+}
+
 fn wdot(a: &[f64], b: &[f64], w: &[f64]) -> f64 {
     a.iter().zip(b).zip(w).map(|((x, y), w)| w * x * y).sum()
 }
 
-/// The three rigid rotations about the gauge node (positions ω × (x − x_g), vertex frames ω),
-/// W-orthonormalized.
+/// The three rigid rotations about the gauge node (positions ω × (x − x_g), edge angles ω·t,
+/// vertex frames ω), W-orthonormalized.
 fn rotations(model: &Model, gauge: usize, w: &[f64]) -> Vec<Vec<f64>> {
     let u = model.unknowns();
     let xg = model.position(gauge);
@@ -67,6 +86,14 @@ fn rotations(model: &Model, gauge: usize, w: &[f64]) -> Vec<Vec<f64>> {
                 if let Some(i) = u.of_node(n, j) {
                     r[i] = *mj;
                 }
+            }
+        }
+        // Edge angles are measured from parallel-transported references, which do not turn
+        // about the edge: a rigid turn ω changes each θ by ω·t.
+        for (e, [a, b]) in model.edge_nodes.iter().enumerate() {
+            if let Some(i) = u.of(model.layout.theta(e)) {
+                let t = sub(model.position(*b), model.position(*a));
+                r[i] = dot(omega, t) / norm(t).max(f64::MIN_POSITIVE);
             }
         }
         for f in 0..model.layout.n_frames() {

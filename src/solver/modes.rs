@@ -6,6 +6,23 @@
 use super::newton::Newton;
 
 impl Newton {
+    /// At a stationary point whose Hessian has no negative curvature but needed a shift: is
+    /// every zero-stiffness mode a gauge mode of the problem (a rigid turn of an unsupported
+    /// body that costs nothing)? Only then is the state stable: a neutral mode (a mechanism
+    /// the loads leave alone) makes it merely neutrally stable, reported as not stable.
+    /// Records the count of non-gauge zero modes in the report (`zero_modes`).
+    pub(super) fn gauge_modes_only<P: super::NewtonProblem>(&mut self, p: &mut P) -> bool {
+        let zero: Vec<Vec<f64>> = self
+            .lowest_modes(6)
+            .into_iter()
+            .filter(|(l, _)| l.abs() < 1e-10)
+            .map(|(_, v)| v)
+            .collect();
+        let gauge = zero.is_empty() || p.gauge_only(&zero);
+        self.report.zero_modes = if gauge { 0 } else { zero.len() };
+        gauge
+    }
+
     /// One step of inverse iteration from a generic vector with the current factor: a growth
     /// beyond 1/ZERO of the scaled diagonal means an eigenvalue below ZERO (relative), which a
     /// Cholesky factorization of a singular matrix can hide behind a round-off pivot.

@@ -165,12 +165,13 @@ impl Newton {
                     ));
                 };
                 if shift == 0.0 {
-                    self.report.stable = true;
+                    // A singular Hessian can factor behind a round-off pivot.
+                    self.report.stable = !self.near_singular() || self.gauge_modes_only(p);
                     return done(res);
                 }
                 match self.escape_saddle(p, e0) {
                     Saddle::ZeroModesOnly => {
-                        self.report.stable = true;
+                        self.report.stable = self.gauge_modes_only(p);
                         return done(res);
                     }
                     Saddle::Escaped if escapes < 8 => {
@@ -296,8 +297,12 @@ impl Newton {
                     self.report.saddle_escapes += 1;
                     Ok(())
                 }
-                found if res < floor => {
-                    self.report.stable = matches!(found, Saddle::ZeroModesOnly);
+                Saddle::ZeroModesOnly if res < floor => {
+                    self.report.stable = self.gauge_modes_only(p);
+                    Err(Outcome::AtFloor)
+                }
+                _ if res < floor => {
+                    self.report.stable = false;
                     Err(Outcome::AtFloor)
                 }
                 _ => Err(failed()),

@@ -65,6 +65,11 @@ pub trait NewtonProblem {
     fn mechanism(&mut self, _modes: &[Vec<f64>]) -> Option<String> {
         None
     }
+    /// Whether the given zero-stiffness modes are all gauge modes (rigid motions the problem
+    /// leaves free on purpose), so that the state is stable on the complement.
+    fn gauge_only(&mut self, _modes: &[Vec<f64>]) -> bool {
+        false
+    }
     /// Size of a perturbation along `direction` that is small for the problem's geometry.
     fn perturbation_size(&self, direction: &[f64]) -> f64;
     /// Characteristic size of each free unknown in its own unit (a length for positions, 1 for

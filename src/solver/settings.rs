@@ -133,8 +133,9 @@ pub struct NewtonReport {
     pub regularized_iterations: usize,
     /// Steps taken along a direction of negative curvature to leave a saddle.
     pub saddle_escapes: usize,
-    /// The final Hessian factored without a shift (the equilibrium is a strict local minimum,
-    /// up to zero-energy modes).
+    /// The Hessian at the final state, restricted to the free unknowns, is positive definite
+    /// (up to gauge modes of an unsupported structure): a strict local minimum. False for a
+    /// saddle and for a neutral state (`zero_modes` > 0).
     pub stable: bool,
     /// Seconds spent in numeric factorization and solves.
     pub factor_seconds: f64,
@@ -147,6 +148,9 @@ pub struct NewtonReport {
     pub stopped: Option<String>,
     /// A zero-stiffness mode of the structure that its loads excite (the solve stopped there).
     pub mechanism: Option<String>,
+    /// Zero-stiffness modes of the final state that are not gauge modes (up to 6 counted): with
+    /// no negative curvature, the state is neutrally stable (`stable` is false).
+    pub zero_modes: usize,
     /// Arc-length continuation only: its steps and the limit points met.
     pub arc_length_steps: usize,
     pub limit_points: Vec<LimitPoint>,
@@ -166,6 +170,14 @@ pub struct NewtonReport {
     pub tolerance: f64,
     /// Constrained problems only: the last step QP's multipliers and its cost.
     pub constraints: Option<ConstraintReport>,
+}
+
+impl NewtonReport {
+    /// No direction of negative curvature, but zero-stiffness modes (a rigid turn the loads
+    /// leave alone, a continuous family of equal-energy states): neither stable nor unstable.
+    pub fn neutral(&self) -> bool {
+        !self.stable && self.zero_modes > 0
+    }
 }
 
 #[derive(Debug, Clone, Default, Serialize)]
