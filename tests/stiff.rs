@@ -272,6 +272,8 @@ struct Dimensionless {
     energy: f64,
     counts: [usize; 5],
     stable: bool,
+    /// Zero-stiffness modes at the end (a neutral family of equal-energy states).
+    neutral: bool,
 }
 
 fn dimensionless(sol: &Solution, ls: f64, ms: f64) -> Dimensionless {
@@ -303,6 +305,7 @@ fn dimensionless(sol: &Solution, ls: f64, ms: f64) -> Dimensionless {
             rep.saddle_escapes,
             rep.retries,
         ],
+        neutral: rep.neutral(),
         stable: rep.stable,
     }
 }
@@ -340,12 +343,26 @@ fn check_scale_invariance(name: &str, base: &Scene, counts: bool) {
              {dr:.1e}, energy {de:.1e}, counts {:?}",
             d.counts
         );
+        // A neutral state is one point of a family of equal-energy states (the Michell ring at
+        // 0.95 Θc may turn about its clamps' axis while counter-rotating its frames): where on
+        // the family the path ends is not a property of the scene, and the step's stretch
+        // correction, solved with a shifted Hessian, moves along such modes by round-off
+        // amplified 1/τ (1.7e-5 apart in scaled copies). There only the energy is compared, and
+        // the solver's counts only to 1 % (the path itself wanders along the family).
+        let family = reference.neutral && d.neutral;
         assert!(
-            dp < 1e-8 && dr < 1e-8 && de < 1e-8,
+            de < 1e-8 && (family || (dp < 1e-8 && dr < 1e-8)),
             "{name}: not scale invariant"
         );
         assert_eq!(d.stable, reference.stable);
-        if counts {
+        if counts && family {
+            let (a, b) = (reference.counts, d.counts);
+            let near = |x: usize, y: usize| x.abs_diff(y) <= 1 + x / 100;
+            assert!(
+                (0..5).all(|k| near(a[k], b[k])),
+                "{name}: solver path changed with scale: {a:?} vs {b:?}"
+            );
+        } else if counts {
             let (a, b) = (reference.counts, d.counts);
             assert!(
                 a[0].abs_diff(b[0]) <= 1 && a[2..] == b[2..] && a[1].abs_diff(b[1]) <= 1,
