@@ -13,7 +13,7 @@ impl Newton {
     /// Records the count of non-gauge zero modes in the report (`zero_modes`).
     pub(super) fn gauge_modes_only<P: super::NewtonProblem>(&mut self, p: &mut P) -> bool {
         let zero: Vec<Vec<f64>> = self
-            .lowest_modes(6)
+            .lowest_modes(4)
             .into_iter()
             .filter(|(l, _)| l.abs() < 1e-10)
             .map(|(_, v)| v)
@@ -60,7 +60,10 @@ impl Newton {
         let mut hv = vec![0.0; n];
         let mut last: Vec<f64> = vec![f64::INFINITY; k];
         let mut pairs = Vec::new();
-        for _ in 0..60 {
+        // Eigenvalues are needed to tell zero (|λ| < 1e-10 of the scale) from not: converged
+        // when each moved by less than 1e-6 of itself or of 1e-12 of the scale.
+        let floor = 1e-12 * self.scaled_diagonal().max(f64::MIN_POSITIVE);
+        for round in 0..30 {
             orthonormalize(&mut v, &w);
             // Rayleigh–Ritz on span(v).
             let hvs: Vec<Vec<f64>> = v
@@ -84,10 +87,16 @@ impl Newton {
                     x
                 })
                 .collect();
-            let done = vals
-                .iter()
-                .zip(&last)
-                .all(|(a, b)| (a - b).abs() <= 1e-10 * a.abs().max(1e-300));
+            // Only the small eigenvalues matter (a zero one would be amplified by 1/τ and show
+            // within two rounds): converged when those, and how many they are, stopped moving.
+            let small = |v: &[f64]| v.iter().filter(|&&a| a.abs() < 1e4 * floor).count();
+            let done = round >= 2
+                && small(&vals) == small(&last)
+                && vals
+                    .iter()
+                    .zip(&last)
+                    .filter(|(a, _)| a.abs() < 1e4 * floor)
+                    .all(|(a, b)| (a - b).abs() <= 1e-6 * a.abs().max(floor));
             last = vals.clone();
             pairs = vals.into_iter().zip(rotated.clone()).collect();
             if done {

@@ -6,8 +6,9 @@ use std::time::Instant;
 use super::newton::Newton;
 use super::problem::NewtonProblem;
 
-/// Lowest modes examined for zero stiffness at the start of a path.
-const ZERO_MODES: usize = 6;
+/// Lowest modes examined for zero stiffness at the start of a path (an unsupported body has
+/// three gauge turns; a fourth would be a mechanism).
+const ZERO_MODES: usize = 4;
 /// Eigenvalue, relative to the Hessian's scaled diagonal, below which a mode counts as having
 /// zero stiffness (round-off leaves about 1e-15; the softest bending mode of a fibre with
 /// r/L = 1e-5 on 100 edges is about 2.5e-13, and the rigidity test of
