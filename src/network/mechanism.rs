@@ -47,6 +47,17 @@ pub fn describe(
     None
 }
 
+/// The rigid rotations of an unsupported structure about its gauge node (none if supported).
+pub fn gauge_modes(model: &Model, gauge_node: Option<usize>) -> Vec<Vec<f64>> {
+    let Some(g) = gauge_node else {
+        return Vec::new();
+    };
+    let mut scales = vec![1.0; model.n_free];
+    model.unknown_scales(&mut scales);
+    let w: Vec<f64> = scales.iter().map(|s| 1.0 / (s * s)).collect();
+    rotations(model, g, &w)
+}
+
 /// Whether every mode lies in the span of an unsupported structure's rigid rotations.
 pub fn gauge_only(model: &Model, gauge_node: Option<usize>, modes: &[Vec<f64>]) -> bool {
     let Some(g) = gauge_node else {

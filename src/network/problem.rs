@@ -198,6 +198,9 @@ impl NewtonProblem for NetworkProblem<'_> {
         g1.iter_mut().zip(&g0).for_each(|(a, b)| *a -= b);
         crate::network::mechanism::describe(self.model, self.rods, self.gauge_node, modes, &g1)
     }
+    fn gauge_modes(&mut self) -> Vec<Vec<f64>> {
+        crate::network::mechanism::gauge_modes(self.model, self.gauge_node)
+    }
     fn gauge_only(&mut self, modes: &[Vec<f64>]) -> bool {
         crate::network::mechanism::gauge_only(self.model, self.gauge_node, modes)
     }

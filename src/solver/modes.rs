@@ -12,6 +12,11 @@ impl Newton {
     /// the loads leave alone) makes it merely neutrally stable, reported as not stable.
     /// Records the count of non-gauge zero modes in the report (`zero_modes`).
     pub(super) fn gauge_modes_only<P: super::NewtonProblem>(&mut self, p: &mut P) -> bool {
+        let gauges = p.gauge_modes();
+        if !gauges.is_empty() && !self.near_singular(&gauges) {
+            self.report.zero_modes = 0;
+            return true;
+        }
         let zero: Vec<Vec<f64>> = self
             .lowest_modes(4)
             .into_iter()
@@ -26,17 +31,30 @@ impl Newton {
     /// One step of inverse iteration from a generic vector with the current factor: a growth
     /// beyond 1/ZERO of the scaled diagonal means an eigenvalue below ZERO (relative), which a
     /// Cholesky factorization of a singular matrix can hide behind a round-off pivot.
-    pub(super) fn near_singular(&mut self) -> bool {
+    ///
+    /// `gauges` (W-orthonormal gauge modes of the problem) are projected out of the result
+    /// first: an unsupported body's rigid turns would otherwise always trigger the full search.
+    pub(super) fn near_singular(&mut self, gauges: &[Vec<f64>]) -> bool {
         const ZERO: f64 = 1e-10;
         let n = self.g.len();
         let (s, w) = (&self.scales, &self.weights);
         let r: Vec<f64> = (0..n)
             .map(|i| (1.0 + 0.5 * ((i as f64) * 1.3).sin()) * s[i])
             .collect();
-        let norm_w = |v: &[f64]| v.iter().zip(w).map(|(x, w)| w * x * x).sum::<f64>().sqrt();
+        let wdot = |a: &[f64], b: &[f64]| {
+            a.iter()
+                .zip(b)
+                .zip(w)
+                .map(|((x, y), w)| w * x * y)
+                .sum::<f64>()
+        };
         let mut x: Vec<f64> = r.iter().zip(w).map(|(r, w)| r * w).collect();
         self.chol.solve(&mut x);
-        let growth = norm_w(&x) / norm_w(&r).max(f64::MIN_POSITIVE);
+        for q in gauges {
+            let c = wdot(&x, q);
+            x.iter_mut().zip(q).for_each(|(x, q)| *x -= c * q);
+        }
+        let growth = wdot(&x, &x).sqrt() / wdot(&r, &r).sqrt().max(f64::MIN_POSITIVE);
         growth * self.scaled_diagonal() > 1.0 / ZERO
     }
 

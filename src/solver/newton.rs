@@ -166,7 +166,8 @@ impl Newton {
                 };
                 if shift == 0.0 {
                     // A singular Hessian can factor behind a round-off pivot.
-                    self.report.stable = !self.near_singular() || self.gauge_modes_only(p);
+                    let gauges = p.gauge_modes();
+                    self.report.stable = !self.near_singular(&gauges) || self.gauge_modes_only(p);
                     return done(res);
                 }
                 match self.escape_saddle(p, e0) {

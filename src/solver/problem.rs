@@ -65,6 +65,11 @@ pub trait NewtonProblem {
     fn mechanism(&mut self, _modes: &[Vec<f64>]) -> Option<String> {
         None
     }
+    /// The problem's gauge modes (W-orthonormal over the free unknowns, W = diag(1/s²) of
+    /// `unknown_scales`): motions it leaves free on purpose. Default none.
+    fn gauge_modes(&mut self) -> Vec<Vec<f64>> {
+        Vec::new()
+    }
     /// Whether the given zero-stiffness modes are all gauge modes (rigid motions the problem
     /// leaves free on purpose), so that the state is stable on the complement.
     fn gauge_only(&mut self, _modes: &[Vec<f64>]) -> bool {

@@ -83,7 +83,8 @@ impl Newton {
         } else {
             None
         };
-        if shift.is_some_and(|s| s > 0.0) || (shift.is_some() && self.near_singular()) {
+        let gauges = p.gauge_modes();
+        if shift.is_some() && self.near_singular(&gauges) {
             let zero: Vec<Vec<f64>> = self
                 .lowest_modes(ZERO_MODES)
                 .into_iter()
