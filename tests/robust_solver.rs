@@ -22,6 +22,28 @@ fn tmpdir(name: &str) -> PathBuf {
     d
 }
 
+/// `rodnet solve` on the scene `text` with `--json`: exit code, the results JSON, stderr.
+fn solve_cli(name: &str, text: &str) -> (Option<i32>, serde_json::Value, String) {
+    let d = tmpdir(name);
+    let (scene, json) = (d.join("scene.ron"), d.join("r.json"));
+    std::fs::write(&scene, text).unwrap();
+    let out = rodnet()
+        .args([
+            "solve",
+            scene.to_str().unwrap(),
+            "--json",
+            json.to_str().unwrap(),
+        ])
+        .output()
+        .unwrap();
+    let v = serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    (
+        out.status.code(),
+        v,
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+    )
+}
+
 fn cantilever(subdivide: usize, solver: &str) -> Scene {
     let text = std::fs::read_to_string(CANTILEVER)
         .unwrap()
@@ -84,29 +106,15 @@ fn a_tolerance_below_the_floor_is_not_reported_as_met() {
     );
 
     // The same through the CLI: exit 1, and the JSON carries the floor.
-    let d = tmpdir("floor");
-    let scene = d.join("tight.ron");
     let text = std::fs::read_to_string(CANTILEVER)
         .unwrap()
         .replace("max_iterations: 200,", "tolerance: 1e-300,");
-    std::fs::write(&scene, text).unwrap();
-    let json = d.join("r.json");
-    let out = rodnet()
-        .args([
-            "solve",
-            scene.to_str().unwrap(),
-            "--json",
-            json.to_str().unwrap(),
-        ])
-        .output()
-        .unwrap();
-    assert_eq!(out.status.code(), Some(1));
-    let v: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let (code, v, stderr) = solve_cli("floor", &text);
+    assert_eq!(code, Some(1));
     assert_eq!(v["converged"], false);
     assert_eq!(v["stopped_at_floor"], true);
     assert!(v["residual_floor"].as_f64().unwrap() > 0.0);
-    assert!(String::from_utf8_lossy(&out.stderr).contains("tolerance 1.0e-300"));
+    assert!(stderr.contains("tolerance 1.0e-300"));
 }
 
 #[test]
@@ -294,22 +302,8 @@ const PORTAL: &str = r#"Scene(
 /// it "converged" to an unstable state with exit 0; now the mechanism is named, exit 1.
 #[test]
 fn a_pinned_portal_is_reported_as_a_mechanism() {
-    let d = tmpdir("portal");
-    let scene = d.join("portal.ron");
-    std::fs::write(&scene, PORTAL).unwrap();
-    let json = d.join("r.json");
-    let out = rodnet()
-        .args([
-            "solve",
-            scene.to_str().unwrap(),
-            "--json",
-            json.to_str().unwrap(),
-        ])
-        .output()
-        .unwrap();
-    assert_eq!(out.status.code(), Some(1));
-    let v: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let (code, v, stderr) = solve_cli("portal", PORTAL);
+    assert_eq!(code, Some(1));
     assert_eq!(v["converged"], false);
     let m = v["mechanism"]["description"].as_str().unwrap();
     assert!(
@@ -317,7 +311,7 @@ fn a_pinned_portal_is_reported_as_a_mechanism() {
             && m.contains("along (1.0000, 0.0000, 0.0000)"),
         "{m}"
     );
-    assert!(String::from_utf8_lossy(&out.stderr).contains("mechanism: rotation"));
+    assert!(stderr.contains("mechanism: rotation"));
 
     // Unloaded, the pinned portal is in equilibrium, but only neutrally: not stable.
     let unloaded = PORTAL.replace(

@@ -245,14 +245,7 @@ fn turn_frames(model: &mut Model, from: &dyn Fn(usize) -> [f64; 3], to: &[[f64; 
 
 /// Adds one cap step's solve to the form finding's report (the last step's state fields win).
 fn merge(total: &mut NewtonReport, r: &NewtonReport) {
-    total.iterations += r.iterations;
-    total.factorizations += r.factorizations;
-    total.regularized_iterations += r.regularized_iterations;
-    total.saddle_escapes += r.saddle_escapes;
-    total.substeps += r.substeps;
-    total.retries += r.retries;
-    total.seconds += r.seconds;
-    total.factor_seconds += r.factor_seconds;
+    total.add_work(r);
     total.step_iterations.push(r.iterations);
     total.residual = r.residual;
     total.energy = r.energy;

@@ -35,14 +35,7 @@ pub fn solve(
     p.set_bias(Vec::new(), Some(t));
     let mut r = p.solve(&settings.clone().equilibrate_only(true));
     r.biased_iterations = biased.iterations;
-    r.iterations += biased.iterations;
-    r.factorizations += biased.factorizations;
-    r.regularized_iterations += biased.regularized_iterations;
-    r.saddle_escapes += biased.saddle_escapes;
-    r.seconds += biased.seconds;
-    r.factor_seconds += biased.factor_seconds;
-    r.substeps += biased.substeps;
-    r.retries += biased.retries;
+    r.add_work(&biased);
     r.load_steps = biased.load_steps;
     let mut steps = biased.step_iterations;
     if let Some(last) = steps.last_mut() {

@@ -41,13 +41,7 @@ impl Newton {
         let r: Vec<f64> = (0..n)
             .map(|i| (1.0 + 0.5 * ((i as f64) * 1.3).sin()) * s[i])
             .collect();
-        let wdot = |a: &[f64], b: &[f64]| {
-            a.iter()
-                .zip(b)
-                .zip(w)
-                .map(|((x, y), w)| w * x * y)
-                .sum::<f64>()
-        };
+        let wdot = |a: &[f64], b: &[f64]| wdot(a, b, w);
         let mut x: Vec<f64> = r.iter().zip(w).map(|(r, w)| r * w).collect();
         self.chol.solve(&mut x);
         for q in gauges {
@@ -137,15 +131,14 @@ fn dot(a: &[f64], b: &[f64]) -> f64 {
     a.iter().zip(b).map(|(x, y)| x * y).sum()
 }
 
+/// The W inner product Σ wᵢ aᵢ bᵢ.
+fn wdot(a: &[f64], b: &[f64], w: &[f64]) -> f64 {
+    a.iter().zip(b).zip(w).map(|((x, y), w)| w * x * y).sum()
+}
+
 /// Gram–Schmidt in the W inner product; vectors that vanish are dropped.
 fn orthonormalize(v: &mut Vec<Vec<f64>>, w: &[f64]) {
-    let wdot = |a: &[f64], b: &[f64]| {
-        a.iter()
-            .zip(b)
-            .zip(w)
-            .map(|((x, y), w)| w * x * y)
-            .sum::<f64>()
-    };
+    let wdot = |a: &[f64], b: &[f64]| wdot(a, b, w);
     let mut out: Vec<Vec<f64>> = Vec::with_capacity(v.len());
     for mut x in v.drain(..) {
         for _ in 0..2 {

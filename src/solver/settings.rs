@@ -173,6 +173,19 @@ pub struct NewtonReport {
 }
 
 impl NewtonReport {
+    /// Adds the work of an earlier solve of the same problem (counts and times); the state
+    /// fields (residual, verdict) stay this report's.
+    pub fn add_work(&mut self, earlier: &NewtonReport) {
+        self.iterations += earlier.iterations;
+        self.factorizations += earlier.factorizations;
+        self.regularized_iterations += earlier.regularized_iterations;
+        self.saddle_escapes += earlier.saddle_escapes;
+        self.substeps += earlier.substeps;
+        self.retries += earlier.retries;
+        self.seconds += earlier.seconds;
+        self.factor_seconds += earlier.factor_seconds;
+    }
+
     /// No direction of negative curvature, but zero-stiffness modes (a rigid turn the loads
     /// leave alone, a continuous family of equal-energy states): neither stable nor unstable.
     pub fn neutral(&self) -> bool {
