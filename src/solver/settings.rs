@@ -148,7 +148,7 @@ pub struct NewtonReport {
     pub stopped: Option<String>,
     /// A zero-stiffness mode of the structure that its loads excite (the solve stopped there).
     pub mechanism: Option<String>,
-    /// Zero-stiffness modes of the final state that are not gauge modes (up to 6 counted): with
+    /// Zero-stiffness modes of the final state that are not gauge modes (up to 4 counted): with
     /// no negative curvature, the state is neutrally stable (`stable` is false).
     pub zero_modes: usize,
     /// Arc-length continuation only: its steps and the limit points met.
