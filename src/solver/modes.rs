@@ -162,7 +162,7 @@ fn jacobi(mut a: Vec<Vec<f64>>) -> (Vec<f64>, Vec<Vec<f64>>) {
     let mut e: Vec<Vec<f64>> = (0..k)
         .map(|i| (0..k).map(|j| f64::from(i == j)).collect())
         .collect();
-    for _ in 0..100 {
+    for _ in 0..50 {
         let off: f64 = (0..k)
             .flat_map(|i| (0..k).filter(move |&j| j != i).map(move |j| (i, j)))
             .map(|(i, j)| a[i][j] * a[i][j])
@@ -173,7 +173,11 @@ fn jacobi(mut a: Vec<Vec<f64>>) -> (Vec<f64>, Vec<Vec<f64>>) {
         }
         for p in 0..k {
             for q in p + 1..k {
-                if a[p][q] == 0.0 {
+                // An off-diagonal entry below round-off of its diagonal pair is zero: rotating
+                // by it would overflow θ and stall the sweep.
+                if a[p][q].abs() <= 1e-18 * (a[p][p].abs() + a[q][q].abs()) {
+                    a[p][q] = 0.0;
+                    a[q][p] = 0.0;
                     continue;
                 }
                 let theta = 0.5 * (a[q][q] - a[p][p]) / a[p][q];
