@@ -27,16 +27,10 @@ pub fn describe(
     modes: &[Vec<f64>],
     f: &[f64],
 ) -> Option<String> {
-    let mut scales = vec![1.0; model.n_free];
-    model.unknown_scales(&mut scales);
-    let w: Vec<f64> = scales.iter().map(|s| 1.0 / (s * s)).collect();
-    let gauges: Vec<Vec<f64>> = gauge_node.map_or_else(Vec::new, |g| rotations(model, g, &w));
+    let w = weights(model);
+    let gauges = gauge_modes(model, gauge_node);
     for mode in modes {
-        let mut v = mode.clone();
-        for r in &gauges {
-            let c = wdot(&v, r, &w);
-            v.iter_mut().zip(r).for_each(|(x, r)| *x -= c * r);
-        }
+        let v = without_gauge(mode, &gauges, &w);
         if wdot(&v, &v, &w).sqrt() < REMAINING {
             continue;
         }
@@ -47,32 +41,37 @@ pub fn describe(
     None
 }
 
-/// The rigid rotations of an unsupported structure about its gauge node (none if supported).
-pub fn gauge_modes(model: &Model, gauge_node: Option<usize>) -> Vec<Vec<f64>> {
-    let Some(g) = gauge_node else {
-        return Vec::new();
-    };
+/// The solver's metric W = diag(1/s²) (`Model::unknown_scales`).
+fn weights(model: &Model) -> Vec<f64> {
     let mut scales = vec![1.0; model.n_free];
     model.unknown_scales(&mut scales);
-    let w: Vec<f64> = scales.iter().map(|s| 1.0 / (s * s)).collect();
-    rotations(model, g, &w)
+    scales.iter().map(|s| 1.0 / (s * s)).collect()
+}
+
+/// `mode` with its components along the (W-orthonormal) gauge modes removed.
+fn without_gauge(mode: &[f64], gauges: &[Vec<f64>], w: &[f64]) -> Vec<f64> {
+    let mut v = mode.to_vec();
+    for r in gauges {
+        let c = wdot(&v, r, w);
+        v.iter_mut().zip(r).for_each(|(x, r)| *x -= c * r);
+    }
+    v
+}
+
+/// The rigid rotations of an unsupported structure about its gauge node (none if supported).
+pub fn gauge_modes(model: &Model, gauge_node: Option<usize>) -> Vec<Vec<f64>> {
+    gauge_node.map_or_else(Vec::new, |g| rotations(model, g, &weights(model)))
 }
 
 /// Whether every mode lies in the span of an unsupported structure's rigid rotations.
 pub fn gauge_only(model: &Model, gauge_node: Option<usize>, modes: &[Vec<f64>]) -> bool {
-    let Some(g) = gauge_node else {
+    if gauge_node.is_none() {
         return false;
-    };
-    let mut scales = vec![1.0; model.n_free];
-    model.unknown_scales(&mut scales);
-    let w: Vec<f64> = scales.iter().map(|s| 1.0 / (s * s)).collect();
-    let gauges = rotations(model, g, &w);
+    }
+    let w = weights(model);
+    let gauges = gauge_modes(model, gauge_node);
     modes.iter().all(|mode| {
-        let mut v = mode.clone();
-        for r in &gauges {
-            let c = wdot(&v, r, &w);
-            v.iter_mut().zip(r).for_each(|(x, r)| *x -= c * r);
-        }
+        let v = without_gauge(mode, &gauges, &w);
         wdot(&v, &v, &w).sqrt() < REMAINING
     })
 }

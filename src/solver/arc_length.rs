@@ -13,6 +13,7 @@
 
 use std::time::Instant;
 
+use super::modes::wdot;
 use super::newton::{Limits, Newton, Outcome};
 use super::problem::NewtonProblem;
 use super::settings::{LimitPoint, NewtonSettings};
@@ -67,7 +68,7 @@ pub(super) fn follow<P: NewtonProblem>(
             ));
         };
         if kappa == 0.0 {
-            let tx = wnorm2(&t.x, &st.weights);
+            let tx = wdot(&t.x, &t.x, &st.weights);
             kappa = if tx > 0.0 { 1.0 / tx } else { 1.0 };
         }
         normalize(&mut t, kappa, &st.weights, prev_t.as_ref());
@@ -180,14 +181,6 @@ fn locate_limit<P: NewtonProblem>(
     lam_a
 }
 
-fn wnorm2(x: &[f64], w: &[f64]) -> f64 {
-    x.iter().zip(w).map(|(x, w)| w * x * x).sum()
-}
-
-fn wdot(a: &[f64], b: &[f64], w: &[f64]) -> f64 {
-    a.iter().zip(b).zip(w).map(|((a, b), w)| w * a * b).sum()
-}
-
 /// ∂g/∂λ at the current state by a central difference (exact for dead loads, whose gradient is
 /// linear in λ; prescribed motions move with λ as well).
 fn g_lambda<P: NewtonProblem>(p: &mut P, lam: f64, n: usize) -> Vec<f64> {
@@ -220,7 +213,7 @@ fn tangent<P: NewtonProblem>(st: &mut Newton, p: &mut P, lam: f64, n: usize) -> 
 /// Unit length in the path metric, oriented along the previous tangent (the first one toward
 /// increasing λ).
 fn normalize(t: &mut Tangent, kappa: f64, w: &[f64], prev: Option<&Tangent>) {
-    let len = (kappa * wnorm2(&t.x, w) + t.lam * t.lam).sqrt();
+    let len = (kappa * wdot(&t.x, &t.x, w) + t.lam * t.lam).sqrt();
     let mut sign = 1.0 / len;
     if let Some(pt) = prev {
         if kappa * wdot(&t.x, &pt.x, w) * sign + t.lam * pt.lam * sign < 0.0 {
@@ -285,10 +278,11 @@ fn correct<P: NewtonProblem>(
             return None;
         }
         let dlam = (kappa * wdot(&t.x, &a, &st.weights) - c) / den;
-        let dx: Vec<f64> = a.iter().zip(&b).map(|(a, b)| -a - b * dlam).collect();
-        let alpha = p.max_step(&dx).min(1.0);
-        p.accept(&dx, alpha);
-        moved.iter_mut().zip(&dx).for_each(|(m, d)| *m += alpha * d);
+        // dx = −a − b·dλ, formed in `a`.
+        a.iter_mut().zip(&b).for_each(|(a, b)| *a = -*a - b * dlam);
+        let alpha = p.max_step(&a).min(1.0);
+        p.accept(&a, alpha);
+        moved.iter_mut().zip(&a).for_each(|(m, d)| *m += alpha * d);
         lam += alpha * dlam;
         p.set_continuation(lam);
         st.report.iterations += 1;

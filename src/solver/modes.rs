@@ -132,7 +132,7 @@ fn dot(a: &[f64], b: &[f64]) -> f64 {
 }
 
 /// The W inner product Σ wᵢ aᵢ bᵢ.
-fn wdot(a: &[f64], b: &[f64], w: &[f64]) -> f64 {
+pub(super) fn wdot(a: &[f64], b: &[f64], w: &[f64]) -> f64 {
     a.iter().zip(b).zip(w).map(|((x, y), w)| w * x * y).sum()
 }
 

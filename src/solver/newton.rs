@@ -142,7 +142,7 @@ impl Newton {
                 cb(step, self.report.iterations, res, e0);
             }
             if floor.is_none() && (res < FLOOR_CHECK || it + 1 >= lim.cap) {
-                let f = p.residual_floor();
+                let f = p.residual_floor(&self.g);
                 self.report.residual_floor = f;
                 floor = Some(f);
             }
@@ -215,12 +215,16 @@ impl Newton {
                 self.chol.solve(&mut self.d);
                 self.report.factor_seconds += ts.elapsed().as_secs_f64();
             }
-            match self.search(p, e0, shift, res) {
+            let curves = self.corrections(p, shift);
+            match self.search(p, e0, shift, res, curves) {
                 Some(alpha) => damped = if alpha < 0.5 { damped + 1 } else { 0 },
-                None => match self.after_failed_search(p, e0, shift, res, floor, &mut escapes) {
-                    Ok(()) => {}
-                    Err(outcome) => return outcome,
-                },
+                None => {
+                    let corrected = curves > 0;
+                    let failed = (e0, shift, res, floor, corrected);
+                    if let Err(outcome) = self.after_failed_search(p, failed, &mut escapes) {
+                        return outcome;
+                    }
+                }
             }
             it += 1;
             self.report.iterations += 1;
@@ -231,23 +235,24 @@ impl Newton {
         }
     }
 
-    /// The line search along the corrected step; accepts the step found.
+    /// The line search along the step corrected by the first `curves` of `c`, `c2`; accepts
+    /// the step found.
     fn search<P: NewtonProblem>(
         &mut self,
         p: &mut P,
         e0: f64,
         shift: f64,
         res: f64,
+        curves: usize,
     ) -> Option<f64> {
         let slope: f64 = self.g.iter().zip(&self.d).map(|(a, b)| a * b).sum();
-        let curves = self.corrections(p, shift);
         // Near convergence on a positive definite Hessian the full Newton step may be judged by
         // its residual when the energy cannot resolve its decrease (see `line_search`).
         let trust = (shift == 0.0 && res < TRUSTED_RESIDUAL && !self.qp_used).then_some(res);
-        let corrections: Vec<&[f64]> = [&self.c[..], &self.c2[..]][..curves].to_vec();
+        let corrections = [&self.c[..], &self.c2[..]];
         let search = Search {
             d: &self.d,
-            corrections: &corrections,
+            corrections: &corrections[..curves],
             e0,
             slope,
             constrained: self.qp.is_some(),
@@ -262,19 +267,16 @@ impl Newton {
     }
 
     /// When no step length passes: energy differences below round-off, or a saddle. Err ends
-    /// the iterations with that outcome.
+    /// the iterations with that outcome. `corrected`: `c` holds the step's first correction,
+    /// left there by the failed search.
     fn after_failed_search<P: NewtonProblem>(
         &mut self,
         p: &mut P,
-        e0: f64,
-        shift: f64,
-        res: f64,
-        floor: f64,
+        (e0, shift, res, floor, corrected): (f64, f64, f64, f64, bool),
         escapes: &mut usize,
     ) -> Result<(), Outcome> {
         // Judge the full step by its residual.
         let n = self.d.len();
-        let corrected = self.corrections(p, shift) > 0;
         for i in 0..n {
             self.trial[i] = self.d[i] + if corrected { self.c[i] } else { 0.0 };
         }

@@ -10,7 +10,8 @@ pub trait NewtonProblem {
     /// Moves the free unknowns to current + `factor` × (current − `from`) (secant predictor).
     fn extrapolate(&mut self, from: &Self::Snapshot, factor: f64);
     /// Relative residual below which round-off dominates (see `relative_residual`).
-    fn residual_floor(&mut self) -> f64;
+    /// (`grad`: the gradient at the current iterate.)
+    fn residual_floor(&mut self, grad: &[f64]) -> f64;
     fn num_free(&self) -> usize;
     /// Upper-triangle (row ≤ col) pairs of the Hessian, every diagonal entry included.
     fn hessian_pattern(&self) -> Vec<(usize, usize)>;

@@ -94,8 +94,6 @@ impl Newton {
             if let Some(m) = (!zero.is_empty()).then(|| p.mechanism(&zero)).flatten() {
                 return Err(m);
             }
-            // The modes' solves left the factor intact, but `g` must be the gradient again.
-            p.assemble(&mut self.g, None);
         }
         p.set_continuation(next);
         if shift.is_none() || n == 0 {
