@@ -97,7 +97,9 @@ impl HemisphereSpec {
             load_steps: 1,
             path: Default::default(),
             tolerance: None,
-            max_iterations: 400,
+            // The solver's own budget: a scene written with --scene-out must not carry a
+            // tighter cap than `rodnet solve` would use by default.
+            max_iterations: Solver::default().max_iterations,
         }
     }
 }
