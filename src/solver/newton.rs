@@ -167,7 +167,9 @@ impl Newton {
                 if shift == 0.0 {
                     // A singular Hessian can factor behind a round-off pivot.
                     let gauges = p.gauge_modes();
-                    self.report.stable = !self.near_singular(&gauges) || self.gauge_modes_only(p);
+                    let singular = self.near_singular(&gauges);
+                    self.report.zero_modes = 0;
+                    self.report.stable = !singular || self.gauge_modes_only(p);
                     return done(res);
                 }
                 match self.escape_saddle(p, e0) {
