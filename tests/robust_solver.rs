@@ -240,6 +240,65 @@ fn square_gridshell_buckles_toward_the_side_asked() {
     assert!((hi_up + lo_down).abs() < 1e-6, "{hi_up} vs {lo_down}");
 }
 
+/// The hemisphere's own flat footprint (`--scene-out`, n = 12, K = 8), solved as a user would
+/// with only `buckle_toward` added, rises to the built-in job's dome (same energy), or to its
+/// mirror image; the buckling path (√λ parameter, lift, length-keeping predictor) takes it
+/// there in well under the 240 iterations of a plain load path.
+#[test]
+fn hemisphere_footprint_rises_toward_the_side_asked() {
+    let d = tmpdir("footprint");
+    let (scene, job) = (d.join("fp.ron"), d.join("job.json"));
+    let out = rodnet()
+        .args([
+            "gridshell",
+            "hemisphere",
+            "--rods",
+            "12",
+            "--subdivide",
+            "8",
+            "--quiet",
+        ])
+        .arg("--scene-out")
+        .arg(&scene)
+        .arg("--json")
+        .arg(&job)
+        .output()
+        .unwrap();
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let job: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&job).unwrap()).unwrap();
+    let dome_energy = job["energy"]["total"].as_f64().unwrap();
+    let text = std::fs::read_to_string(&scene).unwrap();
+    assert!(text.contains("load_steps: 1,"));
+    for z in [1.0, -1.0] {
+        let t = text.replace(
+            "load_steps: 1,",
+            &format!("load_steps: 1, buckle_toward: Some((0.0, 0.0, {z})),"),
+        );
+        let sol = solve(&rodnet::scene::parse("fp.ron", &t).unwrap());
+        assert!(sol.results.converged, "{z}: {:?}", sol.report.message);
+        assert!(sol.report.stable, "{z}: not stable");
+        let e = sol.results.energy.total;
+        assert!(
+            (e - dome_energy).abs() < 1e-6 * dome_energy,
+            "{z}: {e} vs {dome_energy}"
+        );
+        let (lo, hi) = heights(&sol);
+        let apex = if z > 0.0 { hi } else { -lo };
+        assert!(apex > 0.9 && (hi + lo) * z > 0.0, "{z}: z in [{lo}, {hi}]");
+        assert!(
+            sol.report.iterations <= 120,
+            "{z}: {} iterations",
+            sol.report.iterations
+        );
+    }
+}
+
 #[test]
 fn buckle_toward_must_be_a_direction() {
     let text = square_gridshell(3, Some(0.0));

@@ -7,7 +7,7 @@ use rayon::prelude::*;
 
 use crate::energy::registry::{TermVisitor, Terms};
 use crate::energy::{Category, Term};
-use crate::math::vec::{normalize, scalef, sub, transport};
+use crate::math::vec::{norm, normalize, scalef, sub, transport};
 use crate::network::contact::Contact;
 use crate::variables::{DofLayout, FrameRef, State, Unknowns, VarKind};
 
@@ -201,6 +201,15 @@ impl Model {
                 self.state.q[v] += alpha * step[f as usize];
             }
         }
+    }
+
+    /// Length of every global edge for the variables `q`.
+    pub fn edge_lengths_of(&self, q: &[f64]) -> Vec<f64> {
+        let layout = &self.layout;
+        self.edge_nodes
+            .iter()
+            .map(|&[a, b]| norm(sub(layout.position(q, b), layout.position(q, a))))
+            .collect()
     }
 
     /// Accepts the current variables as the new iterate: edge reference frames are transported

@@ -9,6 +9,10 @@ use crate::network::{Network, RodInfo};
 use crate::solver::{NewtonProblem, NewtonReport, NewtonSettings};
 use crate::variables::{State, VarKind};
 
+/// Gauss–Newton passes of the length projection after a secant prediction on a buckling path:
+/// the second leaves length errors of order (first's)², which the Newton iterations absorb.
+const PREDICTOR_PROJECTIONS: usize = 2;
+
 pub struct NetworkProblem<'m> {
     pub model: &'m mut Model,
     slots: HessianSlots,
@@ -122,6 +126,39 @@ impl NewtonProblem for NetworkProblem<'_> {
         }
         m.commit();
     }
+    fn predict(&mut self, from: &State, factor: f64, lambda: f64) {
+        if self.bias.is_empty() {
+            self.extrapolate(from, factor);
+            self.set_continuation(lambda);
+            return;
+        }
+        // On a buckling path edges turn far more than they stretch, and a linearly extrapolated
+        // turn lengthens an edge to second order, which the stiff stretch terms punish: the
+        // prediction is projected back onto lengths extrapolated like the positions (kept by
+        // an inextensible structure, followed by a stretching one).
+        let now = self.model.edge_lengths_of(&self.model.state.q);
+        let before = self.model.edge_lengths_of(&from.q);
+        let lengths: Vec<f64> = now
+            .iter()
+            .zip(&before)
+            .map(|(l, b)| l + factor * (l - b))
+            .collect();
+        self.extrapolate(from, factor);
+        self.set_continuation(lambda);
+        let m = &*self.model;
+        let proj = self
+            .projector
+            .get_or_insert_with(|| Projector::new(m.unknowns(), &m.edge_nodes));
+        let mut c = vec![0.0; m.n_free];
+        for _ in 0..PREDICTOR_PROJECTIONS {
+            let m = &mut *self.model;
+            if !proj.restore_lengths(m.unknowns(), &m.edge_nodes, &m.state.q, &lengths, &mut c) {
+                break;
+            }
+            m.displace(&c, 1.0);
+            m.commit();
+        }
+    }
     fn residual_floor(&mut self, grad: &[f64]) -> f64 {
         // Measured, not estimated from stiffnesses: the residual that rounding every free
         // variable to the nearest double causes. A finely subdivided rod's bending stencils turn a
@@ -217,6 +254,9 @@ impl NewtonProblem for NetworkProblem<'_> {
                     .sum::<f64>()
             })
             .sum()
+    }
+    fn bias(&self) -> &[f64] {
+        &self.bias
     }
     fn excess_force(&mut self, step: &[f64], f: &mut [f64]) -> bool {
         let m = &*self.model;

@@ -91,6 +91,47 @@ impl Projector {
         if !any {
             return false;
         }
+        self.min_norm(u, edge_nodes, &tn, &mut s, c)
+    }
+
+    /// Moves the free nodes by the smallest displacement that brings every edge back to the
+    /// length given in `lengths` to first order (one Gauss–Newton step of the projection);
+    /// returns false when nothing was moved.
+    pub fn restore_lengths(
+        &mut self,
+        u: Unknowns,
+        edge_nodes: &[[usize; 2]],
+        q: &[f64],
+        lengths: &[f64],
+        c: &mut [f64],
+    ) -> bool {
+        let ne = edge_nodes.len();
+        let mut tn = vec![[0.0; 3]; ne];
+        let mut s = vec![0.0; ne];
+        let mut any = false;
+        for (e, &[a, b]) in edge_nodes.iter().enumerate() {
+            let ev = sub(u.layout.position(q, b), u.layout.position(q, a));
+            let l = norm(ev);
+            s[e] = l - lengths[e];
+            tn[e] = scalef(ev, 1.0 / l);
+            any |= s[e].abs() > 1e-14 * l;
+        }
+        c.iter_mut().for_each(|v| *v = 0.0);
+        if !any {
+            return false;
+        }
+        self.min_norm(u, edge_nodes, &tn, &mut s, c)
+    }
+
+    /// c = −Aᵀ(AAᵀ + δI)⁻¹ s, A the rows t'_e·(c_b − c_a) over free unknowns.
+    fn min_norm(
+        &mut self,
+        u: Unknowns,
+        edge_nodes: &[[usize; 2]],
+        tn: &[[f64; 3]],
+        s: &mut [f64],
+        c: &mut [f64],
+    ) -> bool {
         self.chol.values.iter_mut().for_each(|v| *v = 0.0);
         for (e, &[a, b]) in edge_nodes.iter().enumerate() {
             // |t'|² per free endpoint (partially fixed nodes count their free components).
@@ -116,7 +157,7 @@ impl Projector {
         if self.chol.factor(0.0).is_err() {
             return false;
         }
-        self.chol.solve(&mut s);
+        self.chol.solve(s);
         // c = −Aᵀ y.
         for (e, &[a, b]) in edge_nodes.iter().enumerate() {
             for k in 0..3 {

@@ -41,6 +41,7 @@ pub fn solve<P: NewtonProblem>(p: &mut P, s: &NewtonSettings) -> NewtonReport {
     }
     let mut path = Path {
         deadline,
+        root_path: !p.bias().is_empty(),
         steps,
         lam: 0.0,
         inc: 1.0 / steps as f64,
@@ -65,6 +66,11 @@ pub fn solve<P: NewtonProblem>(p: &mut P, s: &NewtonSettings) -> NewtonReport {
 
 struct Path {
     deadline: Option<Instant>,
+    /// The path parameter is t = √λ (λ = t²): past a bifurcation from a symmetric state, the
+    /// state moves away from it as √(λ − λc) (inextensible post-buckling under prescribed end
+    /// motion), and in t it is smooth, so secant predictions hold over long increments. Used on
+    /// `buckle_toward` paths, which are such problems by declaration (docs/design.md).
+    root_path: bool,
     steps: usize,
     lam: f64,
     /// Current sub-step increment of λ.
@@ -150,6 +156,15 @@ impl Path {
         self.start_iterations = st.report.iterations;
     }
 
+    /// The load factor λ at path parameter `t`.
+    fn load(&self, t: f64) -> f64 {
+        if self.root_path {
+            t * t
+        } else {
+            t
+        }
+    }
+
     fn limits(&self, tolerance: f64, cap: usize, retry_on_damping: bool) -> Limits {
         Limits {
             tolerance,
@@ -182,12 +197,12 @@ impl Path {
             let saved = p.snapshot();
             match &*prev {
                 Some((lp, snap)) if self.lam > *lp => {
-                    p.extrapolate(snap, ((next - self.lam) / (self.lam - lp)).min(2.0));
-                    p.set_continuation(next);
+                    let factor = ((next - self.lam) / (self.lam - lp)).min(2.0);
+                    p.predict(snap, factor, self.load(next));
                 }
-                Some(_) => p.set_continuation(next),
+                Some(_) => p.set_continuation(self.load(next)),
                 None => {
-                    if let Err(m) = st.tangent_predict(p, self.lam, next) {
+                    if let Err(m) = st.tangent_predict(p, self.load(self.lam), self.load(next)) {
                         return Outcome::Mechanism(m);
                     }
                 }

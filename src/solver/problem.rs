@@ -9,6 +9,13 @@ pub trait NewtonProblem {
     fn restore(&mut self, s: &Self::Snapshot);
     /// Moves the free unknowns to current + `factor` × (current − `from`) (secant predictor).
     fn extrapolate(&mut self, from: &Self::Snapshot, factor: f64);
+    /// The secant predictor of a continuation sub-step: `extrapolate`, then the continuation
+    /// parameter set to `lambda`. A problem may also restore what linear extrapolation breaks
+    /// (the lengths of turning edges).
+    fn predict(&mut self, from: &Self::Snapshot, factor: f64, lambda: f64) {
+        self.extrapolate(from, factor);
+        self.set_continuation(lambda);
+    }
     /// Relative residual below which round-off dominates (see `relative_residual`).
     /// (`grad`: the gradient at the current iterate.)
     fn residual_floor(&mut self, grad: &[f64]) -> f64;
@@ -59,6 +66,11 @@ pub trait NewtonProblem {
     /// (positive: toward it); 0 when it has none. Signs the escape from saddles.
     fn orientation(&self, _direction: &[f64]) -> f64 {
         0.0
+    }
+    /// The temporary bias force of `buckle_toward` over the free unknowns (empty: none). A
+    /// problem with one is followed as a buckling path (`continuation.rs`, `step.rs`).
+    fn bias(&self) -> &[f64] {
+        &[]
     }
     /// Given zero-stiffness modes of the start (W-orthonormal vectors over the free unknowns),
     /// describes the mechanism they contain that the loads or prescribed motions excite, or

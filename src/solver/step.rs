@@ -14,6 +14,10 @@ const ZERO_MODES: usize = 4;
 /// r/L = 1e-5 on 100 edges is about 2.5e-13, and the rigidity test of
 /// `NewtonProblem::mechanism` separates the two).
 const ZERO_EIGENVALUE: f64 = 1e-10;
+/// Doublings of the lift's trial size (from 1e-4 of a small perturbation: up to 2⁴⁰ times it).
+const LIFT_DOUBLINGS: usize = 40;
+/// Golden sections of the lift's bracket (0.618⁸ ≈ 2 % of it).
+const LIFT_SECTIONS: usize = 8;
 
 impl Newton {
     /// Second-order corrections of the step `d` for the line search's curves x + αd + α²c, in
@@ -109,7 +113,63 @@ impl Newton {
         if e.is_finite() && e < e1 {
             p.accept(&self.d, alpha);
         }
+        if !p.bias().is_empty() {
+            self.lift(p);
+        }
         Ok(())
+    }
+
+    /// The first prediction of a buckling path (`buckle_toward`): the linear response leaves a
+    /// symmetric structure in its symmetric, compressed state, which past the bifurcation is a
+    /// saddle far above the buckled states in energy. The prediction is moved along the bias's
+    /// linear response w = H⁻¹b (the softest shape, on the chosen side) by the amount that
+    /// minimizes the energy: a bracket by doubling from a small size, then golden sections.
+    /// (The factor of H at the path's start is still in `chol`.)
+    fn lift<P: NewtonProblem>(&mut self, p: &mut P) {
+        let mut w = p.bias().to_vec();
+        self.chol.solve(&mut w);
+        let e0 = p.energy();
+        let energy = |p: &mut P, a: f64| {
+            let e = p.trial_energy(&w, a);
+            if e.is_finite() {
+                e
+            } else {
+                f64::INFINITY
+            }
+        };
+        // Doubling from 1e-4 of a small perturbation until the energy rises.
+        let mut a = 1e-4 * p.perturbation_size(&w);
+        let (mut lo, mut best) = (0.0, (0.0, e0));
+        for _ in 0..LIFT_DOUBLINGS {
+            let e = energy(p, a);
+            if e > best.1 {
+                break;
+            }
+            lo = best.0;
+            best = (a, e);
+            a *= 2.0;
+        }
+        if best.0 == 0.0 {
+            return;
+        }
+        // The minimum lies in [lo, a]; golden sections narrow it to a few per cent.
+        let (mut x0, mut x1) = (lo, a);
+        const G: f64 = 0.618_033_988_749_894_9;
+        for _ in 0..LIFT_SECTIONS {
+            let (c, d) = (x1 - G * (x1 - x0), x0 + G * (x1 - x0));
+            let (ec, ed) = (energy(p, c), energy(p, d));
+            for (x, e) in [(c, ec), (d, ed)] {
+                if e < best.1 {
+                    best = (x, e);
+                }
+            }
+            if ec < ed {
+                x1 = d;
+            } else {
+                x0 = c;
+            }
+        }
+        p.accept(&w, best.0);
     }
 
     /// Factors H + τI as for an unconstrained step, then solves the step QP with it at the
