@@ -15,6 +15,7 @@ pub mod positions;
 pub mod problem;
 pub mod projection;
 pub mod rest;
+pub mod stability;
 
 pub use buckle::solve as solve_toward;
 pub use build::build;

@@ -241,13 +241,18 @@ impl SparseCholesky {
 
     /// y = A x with the unshifted symmetric matrix (upper triangle stored).
     pub fn multiply(&self, x: &[f64], y: &mut [f64]) {
+        self.multiply_with(&self.values, x, y);
+    }
+
+    /// y = A x for another matrix of the same pattern, given by its `values`.
+    pub fn multiply_with(&self, values: &[f64], x: &[f64], y: &mut [f64]) {
         y.iter_mut().for_each(|v| *v = 0.0);
         let cp = self.pattern.col_ptr();
         let ri = self.pattern.row_idx();
         for c in 0..self.n {
             for p in cp[c]..cp[c + 1] {
                 let r = ri[p];
-                let v = self.values[p];
+                let v = values[p];
                 y[r] += v * x[c];
                 if r != c {
                     y[c] += v * x[r];

@@ -10,6 +10,7 @@ pub mod problem;
 pub mod qp;
 mod regularize;
 pub mod settings;
+pub mod spectrum;
 mod step;
 
 pub use continuation::solve;

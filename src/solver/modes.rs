@@ -135,7 +135,7 @@ pub(super) fn wdot(a: &[f64], b: &[f64], w: &[f64]) -> f64 {
 }
 
 /// Gram–Schmidt in the W inner product; vectors that vanish are dropped.
-fn orthonormalize(v: &mut Vec<Vec<f64>>, w: &[f64]) {
+pub(super) fn orthonormalize(v: &mut Vec<Vec<f64>>, w: &[f64]) {
     let wdot = |a: &[f64], b: &[f64]| wdot(a, b, w);
     let mut out: Vec<Vec<f64>> = Vec::with_capacity(v.len());
     for mut x in v.drain(..) {
@@ -155,7 +155,7 @@ fn orthonormalize(v: &mut Vec<Vec<f64>>, w: &[f64]) {
 }
 
 /// Eigenvalues and eigenvectors (columns) of a small symmetric matrix, cyclic Jacobi.
-fn jacobi(mut a: Vec<Vec<f64>>) -> (Vec<f64>, Vec<Vec<f64>>) {
+pub(super) fn jacobi(mut a: Vec<Vec<f64>>) -> (Vec<f64>, Vec<Vec<f64>>) {
     let k = a.len();
     let mut e: Vec<Vec<f64>> = (0..k)
         .map(|i| (0..k).map(|j| f64::from(i == j)).collect())

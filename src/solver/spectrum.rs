@@ -1,0 +1,382 @@
+//! Eigen-analysis at a state: the lowest eigenpairs of the Hessian (`rodnet solve --modes K`) and
+//! linear buckling factors (`rodnet buckle`).
+//!
+//! Both are block inverse (subspace) iterations on the sparse Cholesky factor rodnet already
+//! has, with a Rayleigh–Ritz step on the block each round. Chosen over shift-invert Lanczos for
+//! robustness with clustered and repeated eigenvalues (the symmetric pairs of rings, columns
+//! and gridshells), which a block resolves without reorthogonalization or restarts; the
+//! price is a few more solves per converged pair (docs/stability.md).
+
+use super::modes::{jacobi, orthonormalize, wdot};
+use super::newton::Newton;
+use super::ordering::factorization;
+use super::problem::NewtonProblem;
+use super::Ordering;
+
+/// Rounds of subspace iteration before an eigen-solve gives up.
+const MAX_ROUNDS: usize = 300;
+/// Convergence: each wanted Ritz value moved by less than this fraction of itself (or of the
+/// Hessian's scale, for values near zero).
+const RITZ_TOLERANCE: f64 = 1e-10;
+
+/// The lowest eigenpairs of H u = λ W u (W = diag(1/s²) of `unknown_scales`).
+pub struct Spectrum {
+    /// Ascending, in the energy unit (J): uᵀHu for a W-unit u.
+    pub values: Vec<f64>,
+    /// W-orthonormal, over the free unknowns.
+    pub vectors: Vec<Vec<f64>>,
+    /// The Hessian's scaled diagonal (J): eigenvalues below 1e-10 of it are zero.
+    pub scale: f64,
+    /// Largest ‖Hu − λWu‖_W⁻¹ over the scale among the returned pairs.
+    pub residual: f64,
+    pub rounds: usize,
+    /// The shift τ that made H + τW positive definite for the inverse iteration.
+    pub shift: f64,
+}
+
+impl Spectrum {
+    /// Whether eigenvalue `l` is zero at the Hessian's scale.
+    pub fn is_zero(&self, l: f64) -> bool {
+        l.abs() < 1e-10 * self.scale
+    }
+}
+
+/// The `k` lowest eigenpairs of the problem's Hessian at its current state.
+pub fn lowest_modes<P: NewtonProblem>(
+    p: &mut P,
+    k: usize,
+    ordering: Ordering,
+) -> Result<Spectrum, String> {
+    let (mut nt, _) = newton_for(p, ordering);
+    let n = nt.g.len();
+    let k = k.min(n);
+    let e = p.assemble(&mut nt.g, Some(&mut nt.chol.values));
+    if !e.is_finite() {
+        return Err("the energy is not finite at this state".into());
+    }
+    let shift = nt
+        .factor_regularized()
+        .ok_or("the Hessian could not be factored even with a shift")?;
+    let scale = nt.scaled_diagonal().max(f64::MIN_POSITIVE);
+    if k == 0 {
+        return Ok(Spectrum {
+            values: vec![],
+            vectors: vec![],
+            scale,
+            residual: 0.0,
+            rounds: 0,
+            shift,
+        });
+    }
+    let w = nt.weights.clone();
+    let block = (k + k.div_ceil(2) + 2).min(n);
+    let mut v = start_block(&nt.scales, block);
+    let mut hv = vec![0.0; n];
+    let mut last = vec![f64::INFINITY; k];
+    let mut pairs: Vec<(f64, Vec<f64>)> = Vec::new();
+    let mut rounds = 0;
+    while rounds < MAX_ROUNDS {
+        rounds += 1;
+        orthonormalize(&mut v, &w);
+        let hvs: Vec<Vec<f64>> = v
+            .iter()
+            .map(|x| {
+                nt.chol.multiply(x, &mut hv);
+                hv.clone()
+            })
+            .collect();
+        let a = gram(&v, &hvs);
+        let (vals, vecs) = jacobi(a);
+        pairs = ritz(&v, &vals, &vecs);
+        pairs.sort_by(|a, b| a.0.total_cmp(&b.0));
+        let now: Vec<f64> = pairs.iter().take(k).map(|p| p.0).collect();
+        let done = rounds > 2
+            && now.len() == k
+            && now
+                .iter()
+                .zip(&last)
+                .all(|(a, b)| (a - b).abs() <= RITZ_TOLERANCE * a.abs().max(1e-8 * scale));
+        last = now;
+        if done {
+            break;
+        }
+        // v ← (H + τW)⁻¹ W v on the Ritz vectors.
+        v = pairs.iter().map(|p| p.1.clone()).collect();
+        for x in &mut v {
+            x.iter_mut().zip(&w).for_each(|(x, w)| *x *= w);
+            nt.chol.solve(x);
+        }
+    }
+    pairs.truncate(k);
+    let mut residual: f64 = 0.0;
+    for (l, u) in &pairs {
+        nt.chol.multiply(u, &mut hv);
+        // ‖r‖ in the W⁻¹ norm, r = Hu − λWu: the dual norm of the W-unit vector u.
+        let r2: f64 = (0..n)
+            .map(|i| (hv[i] - l * w[i] * u[i]).powi(2) / w[i])
+            .sum();
+        residual = residual.max(r2.sqrt() / scale);
+    }
+    Ok(Spectrum {
+        values: pairs.iter().map(|p| p.0).collect(),
+        vectors: pairs.into_iter().map(|p| p.1).collect(),
+        scale,
+        residual,
+        rounds,
+        shift,
+    })
+}
+
+/// Critical load factors of linear buckling about the start: λ with (K₀ + λK₁)u = 0, K₀ the
+/// Hessian at the start (λ = 0), K₁ = d/dλ of the Hessian along the linear response to the load.
+pub struct Buckling {
+    /// Positive factors, ascending.
+    pub factors: Vec<f64>,
+    /// Their modes, W-normalized, over the free unknowns.
+    pub modes: Vec<Vec<f64>>,
+    pub rounds: usize,
+    /// The load factor of the central difference that gave K₁.
+    pub step: f64,
+}
+
+/// Linear buckling of the problem about its state at λ = 0: the `k` smallest positive factors.
+pub fn linear_buckling<P: NewtonProblem>(
+    p: &mut P,
+    k: usize,
+    ordering: Ordering,
+) -> Result<Buckling, String> {
+    let (mut nt, slots) = newton_for(p, ordering);
+    let n = nt.g.len();
+    p.set_continuation(0.0);
+    let e0 = p.assemble(&mut nt.g, Some(&mut nt.chol.values));
+    if !e0.is_finite() {
+        return Err("the energy is not finite at the start".into());
+    }
+    let k0 = nt.chol.values.clone();
+    if nt.chol.factor(0.0).is_err() {
+        return Err(
+            "the Hessian at the start is not positive definite (an unstable start, or a \
+                    mechanism: check the supports); linear buckling needs a stable start"
+                .into(),
+        );
+    }
+    // The linear response v to the whole load (prescribed motions included).
+    let g0 = nt.g.clone();
+    p.set_continuation(1.0);
+    p.assemble(&mut nt.d, None);
+    p.set_continuation(0.0);
+    let mut v: Vec<f64> = g0.iter().zip(&nt.d).map(|(a, b)| a - b).collect();
+    nt.chol.solve(&mut v);
+    let reach = v
+        .iter()
+        .zip(&nt.scales)
+        .map(|(v, s)| (v / s).abs())
+        .fold(0.0, f64::max);
+    if reach == 0.0 || !reach.is_finite() {
+        return Err(
+            "the loads do nothing to the structure at its start (no loads or prescribed \
+                    motions), so no load factor makes it buckle"
+                .into(),
+        );
+    }
+    // A step that moves nothing by more than 1e-3 of its size: small enough for the central
+    // difference's O(ε²) error, large enough that K₁ε stands out of K₀'s round-off.
+    let eps = (1e-3 / reach).min(1.0);
+    let hess_at = |p: &mut P, nt: &mut Newton, t: f64| {
+        let snap = p.snapshot();
+        p.set_continuation(t);
+        p.accept(&v, t);
+        p.assemble(&mut nt.g, Some(&mut nt.chol.values));
+        let h = nt.chol.values.clone();
+        p.restore(&snap);
+        p.set_continuation(0.0);
+        h
+    };
+    let hp = hess_at(p, &mut nt, eps);
+    let hm = hess_at(p, &mut nt, -eps);
+    // B = −K₁: the eigenproblem K₀u = λBu; μ = 1/λ are the eigenvalues of K₀⁻¹B.
+    let b: Vec<f64> = hp
+        .iter()
+        .zip(&hm)
+        .map(|(a, c)| -(a - c) / (2.0 * eps))
+        .collect();
+    nt.chol.values.copy_from_slice(&k0);
+    if nt.chol.factor(0.0).is_err() {
+        return Err("the Hessian at the start could not be factored again".into());
+    }
+    let _ = slots;
+    let k = k.min(n);
+    let block = (2 * k + 4).min(n);
+    let w = nt.weights.clone();
+    let mut x = start_block(&nt.scales, block);
+    let mut tmp = vec![0.0; n];
+    let mut last = vec![f64::INFINITY; k];
+    let mut found: Vec<(f64, Vec<f64>)> = Vec::new();
+    let mut rounds = 0;
+    while rounds < MAX_ROUNDS {
+        rounds += 1;
+        orthonormalize(&mut x, &w);
+        let kx: Vec<Vec<f64>> = x
+            .iter()
+            .map(|u| {
+                nt.chol.multiply_with(&k0, u, &mut tmp);
+                tmp.clone()
+            })
+            .collect();
+        let bx: Vec<Vec<f64>> = x
+            .iter()
+            .map(|u| {
+                nt.chol.multiply_with(&b, u, &mut tmp);
+                tmp.clone()
+            })
+            .collect();
+        let (mus, ys) = generalized(gram(&x, &kx), gram(&x, &bx))?;
+        let mut pairs = ritz(&x, &mus, &ys);
+        // Largest μ first: the smallest positive factors λ = 1/μ.
+        pairs.sort_by(|a, b| b.0.total_cmp(&a.0));
+        let now: Vec<f64> = pairs
+            .iter()
+            .filter(|p| p.0 > 0.0)
+            .take(k)
+            .map(|p| p.0)
+            .collect();
+        let done = rounds > 2
+            && now.len() == last.len()
+            && now
+                .iter()
+                .zip(&last)
+                .all(|(a, b)| (a - b).abs() <= RITZ_TOLERANCE * a.abs());
+        last = now;
+        found = pairs;
+        if done {
+            break;
+        }
+        // x ← K₀⁻¹ B x on the Ritz vectors.
+        x = found
+            .iter()
+            .map(|(_, u)| {
+                nt.chol.multiply_with(&b, u, &mut tmp);
+                let mut y = tmp.clone();
+                nt.chol.solve(&mut y);
+                y
+            })
+            .collect();
+    }
+    let mut modes = Vec::new();
+    let mut factors = Vec::new();
+    for (mu, mut u) in found.into_iter().filter(|p| p.0 > 0.0).take(k) {
+        let nu = wdot(&u, &u, &w).sqrt();
+        u.iter_mut().for_each(|x| *x /= nu);
+        factors.push(1.0 / mu);
+        modes.push(u);
+    }
+    Ok(Buckling {
+        factors,
+        modes,
+        rounds,
+        step: eps,
+    })
+}
+
+/// A Newton workspace over `p` with its Hessian pattern, factor and unknown scales.
+fn newton_for<P: NewtonProblem>(p: &mut P, ordering: Ordering) -> (Newton, Vec<usize>) {
+    let n = p.num_free();
+    let pairs = p.hessian_pattern();
+    let (chol, slots) = factorization(p, n, &pairs, ordering);
+    p.set_hessian_slots(&slots);
+    let mut nt = Newton::new(chol, None, n);
+    p.unknown_scales(&mut nt.scales);
+    for (w, s) in nt.weights.iter_mut().zip(&nt.scales) {
+        *w = 1.0 / (s * s);
+    }
+    (nt, slots)
+}
+
+/// Deterministic, generic starting vectors, scaled like the unknowns.
+fn start_block(scales: &[f64], m: usize) -> Vec<Vec<f64>> {
+    (0..m)
+        .map(|j| {
+            scales
+                .iter()
+                .enumerate()
+                .map(|(i, s)| (1.0 + 0.5 * ((i as f64) * (0.7 + 0.31 * j as f64)).sin()) * s)
+                .collect()
+        })
+        .collect()
+}
+
+/// The small matrix [xᵢ · yⱼ].
+fn gram(x: &[Vec<f64>], y: &[Vec<f64>]) -> Vec<Vec<f64>> {
+    let dot = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(p, q)| p * q).sum::<f64>();
+    let g: Vec<Vec<f64>> = (0..x.len())
+        .map(|i| (0..y.len()).map(|j| dot(&x[i], &y[j])).collect())
+        .collect();
+    // Symmetrize: the products are symmetric up to round-off.
+    (0..g.len())
+        .map(|i| (0..g.len()).map(|j| 0.5 * (g[i][j] + g[j][i])).collect())
+        .collect()
+}
+
+/// The Ritz vectors Σᵣ x_r c_{r,j} for each column j of `coef`, with their values.
+fn ritz(x: &[Vec<f64>], vals: &[f64], coef: &[Vec<f64>]) -> Vec<(f64, Vec<f64>)> {
+    let n = x.first().map_or(0, Vec::len);
+    (0..vals.len())
+        .map(|c| {
+            let mut u = vec![0.0; n];
+            for (r, xr) in x.iter().enumerate() {
+                let f = coef[r][c];
+                u.iter_mut().zip(xr).for_each(|(u, y)| *u += f * y);
+            }
+            (vals[c], u)
+        })
+        .collect()
+}
+
+/// The small generalized problem B y = μ A y, A positive definite: μ and the A-orthonormal y
+/// (columns), through A = LLᵀ and the symmetric L⁻¹BL⁻ᵀ.
+fn generalized(a: Vec<Vec<f64>>, b: Vec<Vec<f64>>) -> Result<(Vec<f64>, Vec<Vec<f64>>), String> {
+    let m = a.len();
+    let mut l = vec![vec![0.0; m]; m];
+    for j in 0..m {
+        let d = a[j][j] - (0..j).map(|t| l[j][t] * l[j][t]).sum::<f64>();
+        if d.is_nan() || d <= 0.0 {
+            return Err("the stiffness at the start is not positive on the search space".into());
+        }
+        l[j][j] = d.sqrt();
+        for i in j + 1..m {
+            l[i][j] = (a[i][j] - (0..j).map(|t| l[i][t] * l[j][t]).sum::<f64>()) / l[j][j];
+        }
+    }
+    // C = L⁻¹ B L⁻ᵀ: solve L Z = B, then C = L⁻¹ Zᵀ (Z is L⁻¹B, and (L⁻¹B)L⁻ᵀ = (L⁻¹(L⁻¹B)ᵀ)ᵀ).
+    let lsolve = |col: Vec<f64>| -> Vec<f64> {
+        let mut y = col;
+        for i in 0..m {
+            let s: f64 = (0..i).map(|t| l[i][t] * y[t]).sum();
+            y[i] = (y[i] - s) / l[i][i];
+        }
+        y
+    };
+    let z: Vec<Vec<f64>> = (0..m)
+        .map(|j| lsolve((0..m).map(|i| b[i][j]).collect()))
+        .collect(); // z[j] = column j of L⁻¹B
+    let c: Vec<Vec<f64>> = (0..m)
+        .map(|i| lsolve((0..m).map(|j| z[j][i]).collect()))
+        .collect(); // c[i] = column i of L⁻¹ (L⁻¹B)ᵀ
+    let c: Vec<Vec<f64>> = (0..m)
+        .map(|i| (0..m).map(|j| 0.5 * (c[i][j] + c[j][i])).collect())
+        .collect();
+    let (mu, q) = jacobi(c);
+    // y = L⁻ᵀ q, column by column (back substitution).
+    let mut y = vec![vec![0.0; m]; m];
+    for col in 0..m {
+        let mut x: Vec<f64> = (0..m).map(|r| q[r][col]).collect();
+        for i in (0..m).rev() {
+            let s: f64 = (i + 1..m).map(|t| l[t][i] * x[t]).sum();
+            x[i] = (x[i] - s) / l[i][i];
+        }
+        for r in 0..m {
+            y[r][col] = x[r];
+        }
+    }
+    Ok((mu, y))
+}
