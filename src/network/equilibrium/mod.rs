@@ -57,8 +57,8 @@ pub struct Equilibrium {
     pub rods: Vec<RodEquilibrium>,
     /// Joint names and positions, m.
     pub joints: Vec<(String, [f64; 3])>,
-    /// Support (rod, vertex) and its reaction; two supports on one node share it (each reports
-    /// the node's whole reaction).
+    /// Support (rod, vertex) and its reaction. Supports that hold one node (frame) share its
+    /// reaction: the first in scene order reports the whole force (moment), the others zero.
     pub reactions: Vec<(String, usize, Reaction)>,
     /// Scenes with obstacles or bounds only.
     pub constraints: Option<ConstraintForces>,
@@ -99,14 +99,24 @@ impl Equilibrium {
                 axial_force: r.edges.iter().map(|&e| axial_force(net, e)).collect(),
             })
             .collect();
+        // The gradient at a fixed node (frame) is the whole reaction there, however many
+        // supports hold it; how it divides among them is statically indeterminate. The first
+        // support on a node carries its force, the first clamp on a frame its moment, and later
+        // ones report zero, so that the reactions sum to minus the loads.
+        let mut node_taken = std::collections::HashSet::new();
+        let mut frame_taken = std::collections::HashSet::new();
         let reactions = net
             .supports
             .iter()
             .map(|s| {
-                let force = m.layout.node(s.node).map(|v| full[v]);
-                let moment = s
-                    .frame
-                    .map_or([0.0; 3], |f| m.layout.frame(f).map(|v| full[v]));
+                let force = match node_taken.insert(s.node) {
+                    true => m.layout.node(s.node).map(|v| full[v]),
+                    false => [0.0; 3],
+                };
+                let moment = match s.frame.filter(|f| frame_taken.insert(*f)) {
+                    Some(f) => m.layout.frame(f).map(|v| full[v]),
+                    None => [0.0; 3],
+                };
                 (s.rod.clone(), s.vertex, Reaction { force, moment })
             })
             .collect();
