@@ -108,11 +108,20 @@ pub fn run(a: &ConvergenceArgs) -> i32 {
     }
     let problem = match &a.scene {
         Some(path) => match scene::load(path) {
-            Ok((scene, src)) => Problem::Scene {
-                file: path.display().to_string(),
-                src,
-                scene: Box::new(scene),
-            },
+            Ok((scene, src)) => {
+                let file = path.display().to_string();
+                for w in scene::validate::warnings(&scene) {
+                    eprintln!(
+                        "warning: {}",
+                        scene::SceneError::from_field(&file, &src, &w)
+                    );
+                }
+                Problem::Scene {
+                    file,
+                    src,
+                    scene: Box::new(scene),
+                }
+            }
             Err(e) => return bad(e),
         },
         None => match hemisphere_problem(a) {
