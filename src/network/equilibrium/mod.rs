@@ -4,6 +4,7 @@
 //! formats (`io`) only format this value.
 
 mod constraints;
+mod load_energy;
 mod reference;
 mod rod_energy;
 mod stress;
@@ -51,6 +52,8 @@ pub struct Reaction {
 
 #[derive(Debug, Clone)]
 pub struct Equilibrium {
+    /// By category; `external` is the loads' potential measured from the rest configuration
+    /// (minus the work the loads did from the rest positions).
     pub energy: EnergyParts,
     /// Energy of each term kind, in the order of `Terms::NAMES`.
     pub energy_by_kind: Vec<KindEnergy>,
@@ -126,7 +129,10 @@ impl Equilibrium {
             let cr = report.constraints.as_ref().unwrap_or(&none);
             constraints::forces(net, c, cr, &grad, report.tolerance)
         });
-        let energy_by_kind = m.energy_by_kind();
+        let mut energy_by_kind = m.energy_by_kind();
+        for k in energy_by_kind.iter_mut().filter(|k| k.name == "loads") {
+            k.energy = load_energy::from_rest(net, scene);
+        }
         Equilibrium {
             energy: EnergyParts::of(&energy_by_kind),
             energy_by_kind,
