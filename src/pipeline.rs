@@ -62,7 +62,11 @@ pub fn finish(
 ) -> Solution {
     let mut equilibrium = Equilibrium::compute(&network, scene, &report);
     measure(&network, &mut equilibrium);
-    let results = Results::new(&equilibrium, &report);
+    let mut results = Results::new(&equilibrium, &report);
+    results.warnings = crate::scene::validate::warnings(scene)
+        .iter()
+        .map(|w| format!("{}: {}", w.path(), w.message))
+        .collect();
     Solution {
         network,
         report,

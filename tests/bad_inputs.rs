@@ -341,3 +341,66 @@ fn bad_networks_give_located_messages() {
         assert!(!json.exists(), "{name}: results written for bad input");
     }
 }
+
+#[test]
+fn gravity_on_no_mass_is_a_located_warning() {
+    // Every material at density 0 (the default): the weight is nothing. Not an error (the
+    // contract's example has `density: 0.0`), but a warning naming the load and the materials,
+    // on stderr (even with --quiet) and in the results JSON.
+    let d = tmpdir("weightless");
+    let scene = r#"Scene(
+    materials: {
+        "steel": Material(young_modulus: 2e11, poisson_ratio: 0.3, section: Circle(radius: 0.01)),
+        "wire": Material(young_modulus: 2e11, poisson_ratio: 0.3, density: 0.0, section: Circle(radius: 0.001)),
+    },
+    rods: [
+        Rod(name: "a", material: "steel", points: [(0.0, 0.0, 0.0), (1.0, 0.0, 0.0)], subdivide: 4),
+        Rod(name: "b", material: "wire", points: [(1.0, 0.0, 0.0), (1.0, 1.0, 0.0)], subdivide: 4),
+    ],
+    joints: [Joint(name: "j", at: [("a", 1), ("b", 0)], kind: Rigid)],
+    supports: [Support(rod: "a", vertex: 0, kind: Clamp)],
+    loads: [
+        Force(rod: "b", vertex: 1, force: (0.0, 0.0, -1.0)),
+        Gravity(g: (0.0, 0.0, -9.81)),
+    ],
+)"#;
+    let p = write(&d, "weightless.ron", scene);
+    let json = d.join("r.json");
+    let out = rodnet()
+        .args(["solve", "--quiet"])
+        .arg(&p)
+        .arg("--json")
+        .arg(&json)
+        .output()
+        .unwrap();
+    let err = stderr(&out);
+    assert_eq!(out.status.code(), Some(0), "{err}");
+    let at = format!("warning: {}:14:", p.display());
+    assert!(err.starts_with(&at), "{err}");
+    assert!(
+        err.contains("loads[1].g: Gravity acts on no mass")
+            && err.contains("materials \"steel\", \"wire\""),
+        "{err}"
+    );
+    assert_eq!(err.lines().count(), 1, "{err}");
+    let r: serde_json::Value = serde_json::from_slice(&std::fs::read(&json).unwrap()).unwrap();
+    let w = r["warnings"][0].as_str().unwrap();
+    assert!(w.starts_with("loads[1].g: Gravity acts on no mass"), "{w}");
+    // One material with mass is enough: rods of density 0 beside it are weightless on purpose.
+    let heavy = scene.replace(
+        "poisson_ratio: 0.3, section: Circle(radius: 0.01)",
+        "poisson_ratio: 0.3, density: 7850.0, section: Circle(radius: 0.01)",
+    );
+    let p = write(&d, "heavy.ron", &heavy);
+    let out = rodnet()
+        .args(["solve", "--quiet"])
+        .arg(&p)
+        .arg("--json")
+        .arg(&json)
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(0), "{}", stderr(&out));
+    assert!(out.stderr.is_empty(), "{}", stderr(&out));
+    let r: serde_json::Value = serde_json::from_slice(&std::fs::read(&json).unwrap()).unwrap();
+    assert!(r.get("warnings").is_none());
+}

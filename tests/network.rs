@@ -268,3 +268,42 @@ fn scene_only_writes_the_scene_without_solving() {
     assert_eq!(sc.joints.len(), 9);
     assert_eq!(sc.solver.load_steps, 2);
 }
+
+#[test]
+fn a_continuation_on_the_last_line_keeps_the_last_polyline() {
+    // The second polyline ends the file with a `\` continuation (and no line after it): it
+    // is still a rod, with all its points.
+    let d = tmpdir("continuation");
+    for (name, tail) in [("bare", "l 3 \\\n 4 \\"), ("newline", "l 3 \\\n 4 \\\n")] {
+        let obj = d.join(format!("{name}.obj"));
+        std::fs::write(
+            &obj,
+            format!("o a\nv 0 0 0\nv 1 0 0\nv 1 1 0\nv 1 1 1\nl 1 2\no b\n{tail}"),
+        )
+        .unwrap();
+        let scene = d.join(format!("{name}.ron"));
+        run_ok(
+            rodnet()
+                .args(["solve", "--quiet", "--network"])
+                .arg(&obj)
+                .args([
+                    "--young-modulus",
+                    "1e9",
+                    "--poisson-ratio",
+                    "0.3",
+                    "--radius",
+                    "0.01",
+                ])
+                .args(["--pin-below", "0", "--scene-only", "--scene-out"])
+                .arg(&scene),
+        );
+        let (sc, _) = rodnet::scene::load(&scene).unwrap();
+        let names: Vec<&str> = sc.rods.iter().map(|r| r.name.as_str()).collect();
+        assert_eq!(names, ["a", "b"], "{name}");
+        assert_eq!(
+            sc.rods[1].points,
+            [[1.0, 1.0, 0.0], [1.0, 1.0, 1.0]],
+            "{name}"
+        );
+    }
+}

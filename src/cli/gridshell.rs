@@ -6,13 +6,14 @@ use std::path::{Path, PathBuf};
 use clap::Args;
 
 use super::network::JointArg;
-use super::output::{atomic_write, bad, diagnostic, EXIT_NOT_CONVERGED, EXIT_OK};
+use super::output::{atomic_write, bad, check_outputs_creating, diagnostic, given};
+use super::output::{EXIT_NOT_CONVERGED, EXIT_OK};
 use super::progress::{self, show_progress};
 use crate::gridshell::footprint::{self, HemisphereSpec, JointChoice};
 use crate::gridshell::formfind::{FormPath, DEFAULT_START_CAP};
 use crate::gridshell::job as gridshell_job;
-use crate::io::obj;
-use crate::scene::types::Section;
+use crate::io::{atomic, obj};
+use crate::scene::types::{Scene, Section};
 use crate::scene::{self, FieldError};
 
 /// `--path` of `rodnet gridshell hemisphere`.
@@ -202,25 +203,47 @@ struct Outputs {
     json: Option<PathBuf>,
     obj: Option<PathBuf>,
     report: Option<PathBuf>,
+    /// Where the default names go (--out-dir, or the current directory when no output option
+    /// is given); created, if need be, only once everything has been checked.
+    dir: Option<PathBuf>,
+}
+
+impl Outputs {
+    fn list<'a>(&'a self, a: &'a HemisphereArgs) -> Vec<(&'static str, &'a Path)> {
+        given(&[
+            ("--scene-out", &a.scene_out),
+            ("--json", &self.json),
+            ("--obj", &self.obj),
+            ("--report", &self.report),
+        ])
+    }
 }
 
 /// The files asked for, with the default names in --out-dir (or the current directory when no
-/// output option is given), whose directory is created.
+/// output option is given).
 fn outputs(a: &HemisphereArgs) -> Result<Outputs, String> {
     let explicit =
         a.json.is_some() || a.obj.is_some() || a.report.is_some() || a.scene_out.is_some();
-    let default_dir = match (&a.out_dir, explicit) {
+    let dir = match (&a.out_dir, explicit) {
         (Some(d), _) => Some(d.clone()),
         (None, false) => Some(PathBuf::from(".")),
         (None, true) => None,
     };
+    if let Some(d) = &dir {
+        if d.exists() && !d.is_dir() {
+            return Err(format!(
+                "--out-dir {}: exists and is not a directory",
+                d.display()
+            ));
+        }
+    }
     let mut out = Outputs {
         json: a.json.clone(),
         obj: a.obj.clone(),
         report: a.report.clone(),
+        dir,
     };
-    if let Some(d) = &default_dir {
-        std::fs::create_dir_all(d).map_err(|e| format!("cannot create {}: {e}", d.display()))?;
+    if let Some(d) = &out.dir {
         out.json.get_or_insert_with(|| d.join("hemisphere.json"));
         out.obj.get_or_insert_with(|| d.join("hemisphere.obj"));
         out.report.get_or_insert_with(|| d.join("hemisphere.txt"));
@@ -236,10 +259,8 @@ fn invalid(e: &FieldError) -> String {
     )
 }
 
-/// Writes the footprint scene, headed by how it was made.
-fn write_scene(spec: &HemisphereSpec, p: &Path) -> Result<(), String> {
-    let fp = footprint::footprint(spec);
-    scene::validate::validate(&fp.scene).map_err(|e| invalid(&e))?;
+/// Writes the footprint scene (validated), headed by how it was made.
+fn write_scene(spec: &HemisphereSpec, scene: &Scene, p: &Path) -> Result<(), String> {
     let text = format!(
         "// Hemispherical Chebyshev-net gridshell footprint, written by `rodnet gridshell hemisphere`:\n\
          // R = {} m, {} rods per family, subdivide {}, {} joints. The rods lie flat in z = 0 and\n\
@@ -250,7 +271,7 @@ fn write_scene(spec: &HemisphereSpec, p: &Path) -> Result<(), String> {
         spec.rods,
         spec.subdivide,
         spec.joint.name(),
-        footprint::to_ron(&fp.scene)
+        footprint::to_ron(scene)
     );
     atomic_write(p, text.as_bytes())
 }
@@ -260,12 +281,26 @@ pub(super) fn run(a: HemisphereArgs) -> i32 {
         Ok(s) => s,
         Err(e) => return bad(e),
     };
+    // Everything that can be refused is checked before the output directory is created.
     let out = match outputs(&a) {
         Ok(o) => o,
         Err(e) => return bad(e),
     };
+    let creating = out.dir.as_deref().filter(|d| !d.is_dir());
+    if let Err(e) = check_outputs_creating(&out.list(&a), &[], creating) {
+        return bad(e);
+    }
+    let fp = footprint::footprint(&spec);
+    if let Err(e) = scene::validate::validate(&fp.scene) {
+        return bad(invalid(&e));
+    }
+    if let Some(d) = creating {
+        if let Err(e) = std::fs::create_dir_all(d) {
+            return bad(format_args!("cannot create {}: {e}", d.display()));
+        }
+    }
     if let Some(p) = &a.scene_out {
-        if let Err(e) = write_scene(&spec, p) {
+        if let Err(e) = write_scene(&spec, &fp.scene, p) {
             return bad(e);
         }
     }
@@ -299,10 +334,8 @@ pub(super) fn run(a: HemisphereArgs) -> i32 {
     if let Some(p) = out.report {
         files.push((p, summary.clone().into_bytes()));
     }
-    for (p, bytes) in files {
-        if let Err(e) = atomic_write(&p, &bytes) {
-            return bad(e);
-        }
+    if let Err((p, e)) = atomic::write_all(&files) {
+        return bad(format_args!("cannot write {}: {e}", p.display()));
     }
     print!("{summary}");
     if r.converged {

@@ -26,17 +26,20 @@ pub(super) fn atomic_write(p: &Path, bytes: &[u8]) -> Result<(), String> {
 }
 
 /// Refuses outputs that would certainly fail or destroy an input, before any work is done: a
-/// missing directory, a directory as file name, the same file twice, an output over an input.
+/// missing directory, a directory (or a link to one, or a dangling link) as file name, the same
+/// file twice (also through links), an output over an input.
 pub(super) fn check_outputs(outputs: &[(&str, &Path)], inputs: &[&Path]) -> Result<(), String> {
-    let id = |p: &Path| -> Option<PathBuf> {
-        let name = p.file_name()?;
-        let dir = match p.parent().filter(|d| !d.as_os_str().is_empty()) {
-            Some(d) => d.canonicalize().ok()?,
-            None => std::env::current_dir().ok()?,
-        };
-        Some(dir.join(name))
-    };
-    let inputs: Vec<PathBuf> = inputs.iter().filter_map(|p| id(p)).collect();
+    check_outputs_creating(outputs, inputs, None)
+}
+
+/// [`check_outputs`] for outputs some of which go into `creating`, a directory that does not
+/// exist yet and will be created after the checks.
+pub(super) fn check_outputs_creating(
+    outputs: &[(&str, &Path)],
+    inputs: &[&Path],
+    creating: Option<&Path>,
+) -> Result<(), String> {
+    let inputs: Vec<PathBuf> = inputs.iter().filter_map(|p| identity(p)).collect();
     let mut seen: Vec<(&str, PathBuf)> = Vec::new();
     for &(flag, p) in outputs {
         let shown = p.display();
@@ -44,21 +47,25 @@ pub(super) fn check_outputs(outputs: &[(&str, &Path)], inputs: &[&Path]) -> Resu
             return Err(format!("{flag} {shown}: not a file name"));
         }
         if let Some(d) = p.parent().filter(|d| !d.as_os_str().is_empty()) {
-            if !d.is_dir() {
+            let created = creating.is_some_and(|c| d.starts_with(c));
+            if !created && !d.is_dir() {
                 return Err(format!(
                     "{flag} {shown}: directory {} does not exist",
                     d.display()
                 ));
             }
         }
-        if p.is_dir() {
-            return Err(format!("{flag} {shown}: is a directory"));
-        }
-        let Some(full) = id(p) else { continue };
+        let kind = atomic::target(p).map_err(|e| format!("{flag} {shown}: {e}"))?;
+        let Some(full) = identity(p) else { continue };
         if inputs.contains(&full) {
             return Err(format!(
                 "{flag} {shown}: is an input file; refusing to overwrite it"
             ));
+        }
+        // Devices and FIFOs are written through, and twice is harmless (two outputs to
+        // /dev/null, or both to /dev/stdout).
+        if kind == atomic::Target::Special {
+            continue;
         }
         if let Some((other, _)) = seen.iter().find(|(_, q)| *q == full) {
             return Err(format!("{flag} {shown}: same file as {other}"));
@@ -66,6 +73,29 @@ pub(super) fn check_outputs(outputs: &[(&str, &Path)], inputs: &[&Path]) -> Resu
         seen.push((flag, full));
     }
     Ok(())
+}
+
+/// The file a path names, for comparisons: an existing file through its links, otherwise its
+/// nearest existing directory made canonical and the rest of the path.
+fn identity(p: &Path) -> Option<PathBuf> {
+    if let Ok(c) = p.canonicalize() {
+        return Some(c);
+    }
+    let mut tail = vec![p.file_name()?];
+    let mut dir = p.parent()?;
+    loop {
+        let d = if dir.as_os_str().is_empty() {
+            Path::new(".")
+        } else {
+            dir
+        };
+        if let Ok(mut c) = d.canonicalize() {
+            c.extend(tail.iter().rev());
+            return Some(c);
+        }
+        tail.push(d.file_name()?);
+        dir = d.parent()?;
+    }
 }
 
 /// The output options that were given, as (flag, path), for [`check_outputs`].

@@ -72,10 +72,11 @@ fn solve(path: &Path, outputs: Outputs, quiet: bool) -> i32 {
         Ok(s) => s,
         Err(e) => return bad(e),
     };
-    let source = Source::Scene {
-        file: path.display().to_string(),
-        src,
-    };
+    let file = path.display().to_string();
+    for w in scene::validate::warnings(&sc) {
+        eprintln!("warning: {}", SceneError::from_field(&file, &src, &w));
+    }
+    let source = Source::Scene { file, src };
     solve_and_write(&path.display().to_string(), &sc, &source, outputs, quiet)
 }
 

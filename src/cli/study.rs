@@ -108,11 +108,20 @@ pub fn run(a: &ConvergenceArgs) -> i32 {
     }
     let problem = match &a.scene {
         Some(path) => match scene::load(path) {
-            Ok((scene, src)) => Problem::Scene {
-                file: path.display().to_string(),
-                src,
-                scene: Box::new(scene),
-            },
+            Ok((scene, src)) => {
+                let file = path.display().to_string();
+                for w in scene::validate::warnings(&scene) {
+                    eprintln!(
+                        "warning: {}",
+                        scene::SceneError::from_field(&file, &src, &w)
+                    );
+                }
+                Problem::Scene {
+                    file,
+                    src,
+                    scene: Box::new(scene),
+                }
+            }
             Err(e) => return bad(e),
         },
         None => match hemisphere_problem(a) {
@@ -154,6 +163,8 @@ pub fn run(a: &ConvergenceArgs) -> i32 {
     if let Some(p) = &a.csv {
         files.push((p, report::to_csv(&study).into_bytes()));
     }
+    // A plot that cannot be drawn (no level with a positive error) does not cost the table.
+    let mut plot_error = None;
     if let Some(p) = &a.plot {
         let name = match &a.scene {
             Some(s) => s
@@ -166,17 +177,21 @@ pub fn run(a: &ConvergenceArgs) -> i32 {
         let series = plot::series_of(&study);
         match plot::error_vs_time(&series, &title, PLOT_SIZE.0, PLOT_SIZE.1) {
             Ok(png) => files.push((p, png)),
-            Err(e) => {
-                print!("{table}");
-                eprintln!("error: cannot draw {}: {e}; nothing written", p.display());
-                return EXIT_NOT_CONVERGED;
-            }
+            Err(e) => plot_error = Some(format!("cannot draw {}: {e}", p.display())),
         }
     }
     if let Err((p, e)) = atomic::write_all(&files) {
         return bad(format_args!("cannot write {}: {e}", p.display()));
     }
     print!("{table}");
+    if let Some(e) = plot_error {
+        let csv = match &a.csv {
+            Some(p) => format!("{} was written", p.display()),
+            None => "nothing was written".into(),
+        };
+        eprintln!("error: {e}; {csv}");
+        return EXIT_NOT_CONVERGED;
+    }
     if study.all_converged() {
         EXIT_OK
     } else {

@@ -217,6 +217,9 @@ pub struct Results {
     pub contacts: Option<Vec<ContactJson>>,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub kkt: Option<KktJson>,
+    /// What the scene probably did not mean (`scene::validate::warnings`), as `field: message`.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub warnings: Vec<String>,
 }
 
 /// The `reference` block of the results JSON.
@@ -317,6 +320,7 @@ impl Results {
             },
             contacts,
             kkt,
+            warnings: Vec::new(),
         }
     }
 

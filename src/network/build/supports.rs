@@ -31,6 +31,7 @@ pub fn apply(
         infos: Vec::new(),
     };
     let mut moved: HashMap<usize, [f64; 3]> = HashMap::new();
+    let mut turned: HashMap<usize, (usize, Option<[f64; 3]>)> = HashMap::new();
     for (si, s) in rest.scene.supports.iter().enumerate() {
         let (r, rnode) = rest.site(&s.rod, s.vertex);
         let node = net.rods[r].nodes[rnode];
@@ -70,17 +71,31 @@ pub fn apply(
                 .map(|&p| table.ports[p].frame),
             SupportKind::Pin => None,
         };
-        if let (Some(f), Some(rotation)) = (frame, s.rotate_by) {
-            if out.rotations.iter().any(|p| p.frame == f) {
-                return Err(FieldError::new(
-                    "supports",
-                    si,
-                    "rotate_by",
-                    "this clamp's frame is already rotated by another support".into(),
-                ));
+        if let Some(f) = frame {
+            // Clamps on one frame (one rod vertex twice, or rods of one Rigid or Hinge joint)
+            // must agree on how it turns: held, or rotated by the same rotation vector.
+            match turned.insert(f, (si, s.rotate_by)) {
+                Some((k, prev)) if prev != s.rotate_by => {
+                    let field = if s.rotate_by.is_some() {
+                        "rotate_by"
+                    } else {
+                        "kind"
+                    };
+                    return Err(FieldError::new(
+                        "supports",
+                        si,
+                        field,
+                        frame_contradiction(k, prev, s.rotate_by),
+                    ));
+                }
+                Some(_) => {}
+                None => {
+                    if let Some(rotation) = s.rotate_by {
+                        out.rotations
+                            .push(PrescribedRotation { frame: f, rotation });
+                    }
+                }
             }
-            out.rotations
-                .push(PrescribedRotation { frame: f, rotation });
         }
         out.infos.push(SupportInfo {
             rod: s.rod.clone(),
@@ -90,4 +105,20 @@ pub fn apply(
         });
     }
     Ok(out)
+}
+
+/// Why a clamp that turns its frame by `now` (or holds it) contradicts supports[`k`], which
+/// clamps the same frame and turns it by `prev` (or holds it).
+fn frame_contradiction(k: usize, prev: Option<[f64; 3]>, now: Option<[f64; 3]>) -> String {
+    let what = match (prev, now) {
+        (Some(a), Some(b)) => format!("rotates it by {a:?}, not {b:?}"),
+        (Some(a), None) => {
+            format!("rotates it by {a:?}, but this clamp holds it; give both the same `rotate_by`")
+        }
+        (None, Some(_)) => {
+            "holds it, but this clamp rotates it; give both the same `rotate_by`".into()
+        }
+        (None, None) => unreachable!("equal motions do not contradict"),
+    };
+    format!("supports[{k}] clamps the same vertex frame (one joint or vertex) and {what}")
 }

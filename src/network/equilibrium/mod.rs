@@ -4,6 +4,7 @@
 //! formats (`io`) only format this value.
 
 mod constraints;
+mod load_energy;
 mod reference;
 mod rod_energy;
 mod stress;
@@ -51,14 +52,16 @@ pub struct Reaction {
 
 #[derive(Debug, Clone)]
 pub struct Equilibrium {
+    /// By category; `external` is the loads' potential measured from the rest configuration
+    /// (minus the work the loads did from the rest positions).
     pub energy: EnergyParts,
     /// Energy of each term kind, in the order of `Terms::NAMES`.
     pub energy_by_kind: Vec<KindEnergy>,
     pub rods: Vec<RodEquilibrium>,
     /// Joint names and positions, m.
     pub joints: Vec<(String, [f64; 3])>,
-    /// Support (rod, vertex) and its reaction; two supports on one node share it (each reports
-    /// the node's whole reaction).
+    /// Support (rod, vertex) and its reaction. Supports that hold one node (frame) share its
+    /// reaction: the first in scene order reports the whole force (moment), the others zero.
     pub reactions: Vec<(String, usize, Reaction)>,
     /// Scenes with obstacles or bounds only.
     pub constraints: Option<ConstraintForces>,
@@ -99,14 +102,24 @@ impl Equilibrium {
                 axial_force: r.edges.iter().map(|&e| axial_force(net, e)).collect(),
             })
             .collect();
+        // The gradient at a fixed node (frame) is the whole reaction there, however many
+        // supports hold it; how it divides among them is statically indeterminate. The first
+        // support on a node carries its force, the first clamp on a frame its moment, and later
+        // ones report zero, so that the reactions sum to minus the loads.
+        let mut node_taken = std::collections::HashSet::new();
+        let mut frame_taken = std::collections::HashSet::new();
         let reactions = net
             .supports
             .iter()
             .map(|s| {
-                let force = m.layout.node(s.node).map(|v| full[v]);
-                let moment = s
-                    .frame
-                    .map_or([0.0; 3], |f| m.layout.frame(f).map(|v| full[v]));
+                let force = match node_taken.insert(s.node) {
+                    true => m.layout.node(s.node).map(|v| full[v]),
+                    false => [0.0; 3],
+                };
+                let moment = match s.frame.filter(|f| frame_taken.insert(*f)) {
+                    Some(f) => m.layout.frame(f).map(|v| full[v]),
+                    None => [0.0; 3],
+                };
                 (s.rod.clone(), s.vertex, Reaction { force, moment })
             })
             .collect();
@@ -116,7 +129,10 @@ impl Equilibrium {
             let cr = report.constraints.as_ref().unwrap_or(&none);
             constraints::forces(net, c, cr, &grad, report.tolerance)
         });
-        let energy_by_kind = m.energy_by_kind();
+        let mut energy_by_kind = m.energy_by_kind();
+        for k in energy_by_kind.iter_mut().filter(|k| k.name == "loads") {
+            k.energy = load_energy::from_rest(net, scene);
+        }
         Equilibrium {
             energy: EnergyParts::of(&energy_by_kind),
             energy_by_kind,

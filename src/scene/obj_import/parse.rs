@@ -116,6 +116,10 @@ fn statements(src: &str) -> Vec<(usize, String)> {
         pending.push_str(text);
         out.push((pending_line, std::mem::take(&mut pending)));
     }
+    // A continuation on the last line has no next line to join: the statement ends there.
+    if !pending.is_empty() {
+        out.push((pending_line, pending));
+    }
     out
 }
 

@@ -1,6 +1,6 @@
 //! Obstacles and bounds: the sections that turn Newton steps into QPs.
 
-use super::{finite3, positive, Fault, RodIndex};
+use super::{direction, finite3, positive, Fault, RodIndex, MIN_DIRECTION};
 use crate::scene::types::{Bound, Obstacle, Scene};
 use crate::scene::FieldError;
 
@@ -21,8 +21,8 @@ fn obstacle(o: &Obstacle) -> Result<(), Fault> {
     };
     let point = |f, v: &[f64; 3]| check(finite3(v), f, "finite", format!("{v:?}"));
     let direction = |f, v: &[f64; 3]| {
-        let ok = finite3(v) && v.iter().any(|x| *x != 0.0);
-        check(ok, f, "finite and non-zero", format!("{v:?}"))
+        let what = format!("a finite direction of length at least {MIN_DIRECTION:e}");
+        check(direction(v), f, &what, format!("{v:?}"))
     };
     let radius = |r: f64| check(positive(r), "radius", "positive and finite", format!("{r}"));
     match o {

@@ -1,6 +1,6 @@
 use std::collections::HashSet;
 
-use super::{finite3, positive, InJoint, RodIndex};
+use super::{direction, positive, InJoint, RodIndex, MIN_DIRECTION};
 use crate::scene::types::{Joint, Scene};
 use crate::scene::FieldError;
 
@@ -31,8 +31,11 @@ pub(super) fn joints<'a>(s: &'a Scene, rods: &RodIndex) -> Result<InJoint<'a>, F
             }
         }
         if let Some(n) = j.normal {
-            if !finite3(&n) || n == [0.0; 3] {
-                return err("normal", "must be finite and non-zero".into());
+            if !direction(&n) {
+                return err(
+                    "normal",
+                    format!("must be a finite direction of length at least {MIN_DIRECTION:e}, got {n:?}"),
+                );
             }
         }
         if let Err(m) = elastic(j) {

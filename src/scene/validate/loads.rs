@@ -36,6 +36,45 @@ pub(super) fn loads(s: &Scene, rods: &RodIndex) -> Result<(), FieldError> {
     Ok(())
 }
 
+/// Gravity loads that act on nothing: every rod's material has density 0 (the default). A
+/// warning, not an error: the contract's own example scene has `density: 0.0` beside a
+/// commented-out `Gravity`, and such scenes have always solved (as unloaded). Rods of density 0
+/// beside heavier ones are weightless on purpose (cables, ties) and get no warning.
+pub(super) fn gravity_warnings(s: &Scene) -> Vec<FieldError> {
+    let Some(why) = weightless(s) else {
+        return Vec::new();
+    };
+    s.loads
+        .iter()
+        .enumerate()
+        .filter(|(_, l)| matches!(l, Load::Gravity { .. }))
+        .map(|(i, _)| FieldError::new("loads", i, "g", why.clone()))
+        .collect()
+}
+
+/// Why gravity would act on nothing, if it would.
+fn weightless(s: &Scene) -> Option<String> {
+    let mut names: Vec<&str> = Vec::new();
+    for r in &s.rods {
+        if s.materials[&r.material].density > 0.0 {
+            return None;
+        }
+        if !names.contains(&r.material.as_str()) {
+            names.push(&r.material);
+        }
+    }
+    let quoted: Vec<String> = names.iter().map(|n| format!("\"{n}\"")).collect();
+    let (what, verb) = match names.len() {
+        1 => ("the density of material", "is"),
+        _ => ("the densities of materials", "are"),
+    };
+    Some(format!(
+        "Gravity acts on no mass, so it does nothing: {what} {} {verb} 0 (the default); give \
+         a `density` in kg/m³",
+        quoted.join(", ")
+    ))
+}
+
 /// Net force and net moment about the origin on one group of joined rods, with a magnitude
 /// for round-off and the first load on the group (load index, rod index).
 #[derive(Debug, Clone, Copy, Default)]

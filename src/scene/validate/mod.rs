@@ -33,6 +33,16 @@ fn finite3(v: &[f64; 3]) -> bool {
     v.iter().all(|x| x.is_finite() && x.abs() <= MAX_MAGNITUDE)
 }
 
+/// Shortest direction vector accepted (normals, axes): normalizing squares the components,
+/// and below about 1e-154 the squares fall into subnormals or to zero, so the unit vector
+/// would be inexact or not finite.
+pub const MIN_DIRECTION: f64 = 1e-150;
+
+/// A finite vector that can be normalized.
+fn direction(v: &[f64; 3]) -> bool {
+    finite3(v) && crate::math::vec::norm(*v) >= MIN_DIRECTION
+}
+
 fn positive(x: f64) -> bool {
     x.is_finite() && x > 0.0 && x <= MAX_MAGNITUDE
 }
@@ -61,6 +71,12 @@ pub fn validate(s: &Scene) -> Result<(), FieldError> {
     targets::target(s)?;
     targets::reference(s, &rods)?;
     solver(&s.solver)
+}
+
+/// What a valid scene probably did not mean, located like errors (`rodnet solve` prints them
+/// on stderr, and the results JSON lists them under `warnings`).
+pub fn warnings(s: &Scene) -> Vec<FieldError> {
+    loads::gravity_warnings(s)
 }
 
 /// The field at fault in one item of a section, and why.
@@ -113,8 +129,7 @@ fn solver(sv: &Solver) -> Result<(), FieldError> {
         ));
     }
     if let Some(d) = sv.buckle_toward {
-        let n = d.iter().map(|x| x * x).sum::<f64>().sqrt();
-        if !(n.is_finite() && n > 1e-150) {
+        if !direction(&d) {
             return Err(FieldError::global(
                 "solver",
                 "buckle_toward",

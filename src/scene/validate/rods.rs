@@ -1,6 +1,8 @@
 use std::collections::HashMap;
 
-use super::{finite3, segments, InJoint, RodIndex, MAX_MAGNITUDE, MAX_NODES};
+use super::{
+    direction, finite3, segments, InJoint, RodIndex, MAX_MAGNITUDE, MAX_NODES, MIN_DIRECTION,
+};
 use crate::math::vec::{cross, dist, dot, norm, sub};
 use crate::scene::types::{Rod, Scene};
 use crate::scene::FieldError;
@@ -48,7 +50,10 @@ pub(super) fn rods(s: &Scene) -> Result<RodIndex<'_>, FieldError> {
             if !normal_ok(r, n) {
                 return err(
                     "normal",
-                    "must be finite and not parallel to the first edge".into(),
+                    format!(
+                        "must be finite and not parallel to the first edge (a direction of \
+                         length at least {MIN_DIRECTION:e}), got {n:?}"
+                    ),
                 );
             }
         }
@@ -121,7 +126,7 @@ fn points(r: &Rod) -> Result<(), String> {
 fn normal_ok(r: &Rod, n: [f64; 3]) -> bool {
     let t = sub(r.points[1], r.points[0]);
     let nn = norm(n);
-    finite3(&n) && nn != 0.0 && norm(cross(t, n)) > 1e-8 * nn * dist(&r.points[1], &r.points[0])
+    direction(&n) && norm(cross(t, n)) > 1e-8 * nn * dist(&r.points[1], &r.points[0])
 }
 
 /// Two non-adjacent points of one rod at the same place would make two nodes sit on each other
