@@ -74,3 +74,39 @@ pub fn finish(
         results,
     }
 }
+
+/// The lowest `k` eigenmodes at a solved equilibrium (`rodnet solve --modes K`): sets the
+/// results' `stability` block and returns the analysis (for mode shapes).
+pub fn analyse_modes(
+    sol: &mut Solution,
+    k: usize,
+) -> Result<crate::network::stability::Stability, String> {
+    if sol.network.model.contact.is_some() {
+        return Err(
+            "--modes does not handle contact or bounds yet (the active constraints \
+                    would have to be held); solve without --modes"
+                .into(),
+        );
+    }
+    let st = crate::network::stability::analyse(&mut sol.network, k)?;
+    sol.results.stability = Some((&st).into());
+    Ok(st)
+}
+
+/// Mode shapes as OBJ, one object per mode, each displaced by a tenth of the structure's size.
+pub fn modes_obj(network: &Network, labels: &[String], modes: &[Vec<f64>]) -> String {
+    let shapes: Vec<(String, crate::network::stability::Shape)> = labels
+        .iter()
+        .zip(modes)
+        .map(|(l, m)| {
+            (
+                l.clone(),
+                crate::network::stability::mode_shape(network, m, MODE_AMPLITUDE),
+            )
+        })
+        .collect();
+    crate::io::stability::modes_obj("mode shapes", &shapes)
+}
+
+/// Largest node motion of a drawn mode shape, over the bounding-box diagonal.
+pub const MODE_AMPLITUDE: f64 = 0.1;

@@ -170,3 +170,156 @@ fn a_compressed_column_softens_and_turns_unstable_at_euler() {
     let p_crit = E * PI * R * R * d_crit / L;
     assert!((p_crit / p_e - 1.0).abs() < 1e-3, "{p_crit} vs {p_e}");
 }
+
+fn rodnet() -> std::process::Command {
+    std::process::Command::new(env!("CARGO_BIN_EXE_rodnet"))
+}
+
+fn tmpdir(name: &str) -> std::path::PathBuf {
+    let d = std::env::temp_dir().join(format!("rodnet-stability-{name}-{}", std::process::id()));
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+fn load_obj(path: &std::path::Path) -> Vec<tobj::Model> {
+    let opts = tobj::LoadOptions {
+        single_index: false,
+        triangulate: false,
+        ignore_points: false,
+        ignore_lines: false,
+    };
+    let text = std::fs::read_to_string(path).unwrap();
+    tobj::load_obj_buf(&mut text.as_bytes(), &opts, |_| {
+        Err(tobj::LoadError::OpenFileFailed)
+    })
+    .expect("tobj loads the modes")
+    .0
+}
+
+/// `rodnet solve --modes K --modes-obj F` and `rodnet buckle` on a cantilever column loaded at
+/// half its Euler load: stable, K positive eigenvalues in pairs, K OBJ objects; the buckle
+/// command's first factor is Euler's within the discretization error.
+#[test]
+fn modes_and_buckle_commands_report_and_draw_the_modes() {
+    let d = tmpdir("cli");
+    let n = 32;
+    let p_cr = PI * PI * ei() / (4.0 * L * L);
+    let tip = format!(
+        r#"Force(rod: "c", vertex: 1, force: (0.0, 0.0, {}))"#,
+        -0.5 * p_cr
+    );
+    let scene = d.join("col.ron");
+    std::fs::write(&scene, column(n, "Clamp", "", &tip)).unwrap();
+    let (json, obj) = (d.join("s.json"), d.join("m.obj"));
+    let out = rodnet()
+        .args(["solve", scene.to_str().unwrap(), "--modes", "4", "--quiet"])
+        .args([
+            "--json",
+            json.to_str().unwrap(),
+            "--modes-obj",
+            obj.to_str().unwrap(),
+        ])
+        .output()
+        .unwrap();
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let v: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let st = &v["stability"];
+    assert_eq!(st["stable"], true, "{st}");
+    assert_eq!(st["negative"], 0);
+    assert_eq!(st["unit"], "N/m");
+    let ev: Vec<f64> = st["eigenvalues"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x.as_f64().unwrap())
+        .collect();
+    assert_eq!(ev.len(), 4);
+    assert!(ev[0] > 0.0 && ev.windows(2).all(|w| w[0] <= w[1]), "{ev:?}");
+    assert!((ev[0] - ev[1]).abs() < 1e-6 * ev[0], "lateral pair: {ev:?}");
+    let models = load_obj(&obj);
+    assert_eq!(models.len(), 4);
+    assert_eq!(models[0].name, "mode_1");
+    assert_eq!(models[0].mesh.positions.len(), 3 * (n + 1));
+
+    let bj = d.join("b.json");
+    let out = rodnet()
+        .args([
+            "buckle",
+            scene.to_str().unwrap(),
+            "--modes",
+            "2",
+            "--json",
+            bj.to_str().unwrap(),
+        ])
+        .output()
+        .unwrap();
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let b: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&bj).unwrap()).unwrap();
+    let f: Vec<f64> = b["critical_load_factors"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x.as_f64().unwrap())
+        .collect();
+    // The load is half Euler's: the factor is 2, within the n = 32 error (2e-4).
+    assert!((f[0] - 2.0).abs() < 1e-3, "{f:?}");
+    assert_eq!(b["modes"].as_array().unwrap().len(), 2);
+    // Checked along the nonlinear path: the straight column's tangent stiffness loses its
+    // lowest eigenvalue at the same factor.
+    let on_path = b["path"]["critical_load_factor"]
+        .as_f64()
+        .expect("a crossing");
+    assert!(
+        (on_path - f[0]).abs() < 1e-4 * f[0],
+        "{on_path} vs {}",
+        f[0]
+    );
+    let disp = &b["modes"][0]["rods"][0]["displacement"];
+    assert_eq!(disp.as_array().unwrap().len(), n + 1);
+}
+
+/// Linear buckling needs loads, and a stable start.
+#[test]
+fn buckle_refuses_a_scene_without_loads() {
+    let d = tmpdir("noload");
+    let scene = d.join("c.ron");
+    std::fs::write(&scene, column(8, "Clamp", "", "")).unwrap();
+    let out = rodnet()
+        .args(["buckle", scene.to_str().unwrap()])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2));
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(err.contains("no loads"), "{err}");
+    let out = rodnet()
+        .args(["solve", scene.to_str().unwrap(), "--modes-obj", "x.obj"])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2), "--modes-obj needs --modes");
+}
+
+/// A cantilever under a transverse tip load does not buckle: the linear analysis about the rest
+/// state finds spurious factors (the rotation of its stiff stretch terms along the bending
+/// response), and the check along the nonlinear path says there is no crossing up to the load.
+#[test]
+fn buckle_path_check_rejects_the_spurious_factor_of_a_bent_cantilever() {
+    let out = rodnet()
+        .args(["buckle", "networks/cantilever.ron", "--modes", "1"])
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(0));
+    let text = String::from_utf8_lossy(&out.stdout);
+    assert!(text.contains("no buckling there"), "{text}");
+}

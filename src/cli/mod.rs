@@ -1,6 +1,7 @@
 //! The `rodnet` command line (see docs/cli.md and docs/contract.md): the clap tree and the
 //! dispatch to one module per command.
 
+mod buckle;
 mod gridshell;
 mod network;
 mod output;
@@ -13,6 +14,7 @@ use std::path::PathBuf;
 
 use clap::{Parser, Subcommand};
 
+pub use buckle::BuckleArgs;
 pub use gridshell::{
     HemisphereArgs, PathArg, SectionRatio, DEFAULT_RODS, DEFAULT_SUBDIVIDE, MAX_RODS,
 };
@@ -51,12 +53,22 @@ pub enum Command {
         /// Write one CSV row per node here.
         #[arg(long)]
         csv: Option<PathBuf>,
+        /// Eigen-analysis at the equilibrium: the lowest K eigenvalues (N/m) and whether the
+        /// state is stable, as a "stability" block in the results JSON.
+        #[arg(long, value_name = "K", value_parser = clap::value_parser!(u32).range(1..=200))]
+        modes: Option<u32>,
+        /// Write the --modes shapes here, one OBJ object per mode.
+        #[arg(long, value_name = "OUT.obj", requires = "modes")]
+        modes_obj: Option<PathBuf>,
         /// No progress output.
         #[arg(long)]
         quiet: bool,
         #[command(flatten)]
         network: NetworkArgs,
     },
+    /// Linear buckling: the factors by which the scene's loads (and prescribed motions) can be
+    /// multiplied before the structure buckles, and their modes.
+    Buckle(BuckleArgs),
     /// Draw a results JSON as a PNG: orthographic views, rods coloured by bending stress.
     Plot(PlotArgs),
     /// Elastic gridshells: generate, form-find and compare with the analytic shape.
@@ -87,9 +99,23 @@ pub fn run(cli: Cli) -> i32 {
             json,
             obj,
             csv,
+            modes,
+            modes_obj,
             quiet,
             network,
-        } => solve::run(scene, solve::Outputs { json, obj, csv }, quiet, &network),
+        } => solve::run(
+            scene,
+            solve::Outputs {
+                json,
+                obj,
+                csv,
+                modes: modes.map(|k| k as usize),
+                modes_obj,
+            },
+            quiet,
+            &network,
+        ),
+        Command::Buckle(args) => buckle::run(&args),
         Command::Gridshell {
             shape: GridshellCommand::Hemisphere(args),
         } => gridshell::run(args),

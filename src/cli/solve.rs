@@ -15,6 +15,9 @@ pub(super) struct Outputs {
     pub json: Option<PathBuf>,
     pub obj: Option<PathBuf>,
     pub csv: Option<PathBuf>,
+    /// The eigen-analysis asked for (`--modes K`) and where its mode shapes go.
+    pub modes: Option<usize>,
+    pub modes_obj: Option<PathBuf>,
 }
 
 impl Outputs {
@@ -23,6 +26,7 @@ impl Outputs {
             ("--json", &self.json),
             ("--obj", &self.obj),
             ("--csv", &self.csv),
+            ("--modes-obj", &self.modes_obj),
         ])
     }
 }
@@ -122,9 +126,16 @@ fn solve_and_write(label: &str, sc: &Scene, source: &Source, outputs: Outputs, q
     settings.progress = Some(tracker.hook());
     let result = job::solve_scene(sc, &settings);
     let seen = tracker.finish();
-    let sol = match result {
+    let mut sol = match result {
         Ok(s) => s,
         Err(e) => return bad(source.describe(&e)),
+    };
+    let modes = match outputs.modes {
+        Some(k) if sol.results.all_finite() => match job::analyse_modes(&mut sol, k) {
+            Ok(st) => Some(st),
+            Err(e) => return bad(format_args!("{label}: eigen-analysis: {e}")),
+        },
+        _ => None,
     };
     let r = &sol.results;
     let steps = settings.load_steps;
@@ -161,6 +172,18 @@ fn solve_and_write(label: &str, sc: &Scene, source: &Source, outputs: Outputs, q
     }
     if let Some(p) = &outputs.csv {
         files.push((p, csv::to_csv(&sol.equilibrium).into_bytes()));
+    }
+    if let (Some(p), Some(st)) = (&outputs.modes_obj, &modes) {
+        let labels: Vec<String> = st
+            .eigenvalues
+            .iter()
+            .enumerate()
+            .map(|(i, l)| format!("mode_{} eigenvalue {l:.6e} N/m", i + 1))
+            .collect();
+        files.push((
+            p,
+            job::modes_obj(&sol.network, &labels, &st.modes).into_bytes(),
+        ));
     }
     if let Err((p, e)) = atomic::write_all(&files) {
         return bad(format_args!("cannot write {}: {e}", p.display()));

@@ -4,3 +4,4 @@ pub mod csv;
 pub mod obj;
 pub mod plot;
 pub mod results;
+pub mod stability;

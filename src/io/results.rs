@@ -217,6 +217,9 @@ pub struct Results {
     pub contacts: Option<Vec<ContactJson>>,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub kkt: Option<KktJson>,
+    /// `rodnet solve --modes K` only: the lowest eigenvalues at the equilibrium.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub stability: Option<crate::io::stability::StabilityJson>,
     /// What the scene probably did not mean (`scene::validate::warnings`), as `field: message`.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub warnings: Vec<String>,
@@ -320,6 +323,7 @@ impl Results {
             },
             contacts,
             kkt,
+            stability: None,
             warnings: Vec::new(),
         }
     }

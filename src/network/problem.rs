@@ -27,6 +27,9 @@ pub struct NetworkProblem<'m> {
     /// The rods (to name a mechanism) and the gauge node of an unsupported structure.
     rods: &'m [RodInfo],
     gauge_node: Option<usize>,
+    /// The load factors at continuation parameters 0 and 1 (default 0 and 1): a solve then
+    /// goes from one load factor to another (`network/stability.rs` follows a path beyond 1).
+    load_range: (f64, f64),
 }
 
 impl<'m> NetworkProblem<'m> {
@@ -40,6 +43,7 @@ impl<'m> NetworkProblem<'m> {
             toward: None,
             rods: &[],
             gauge_node: None,
+            load_range: (0.0, 1.0),
         }
     }
 
@@ -59,6 +63,11 @@ impl<'m> NetworkProblem<'m> {
     pub fn set_bias(&mut self, bias: Vec<f64>, toward: Option<[f64; 3]>) {
         self.bias = bias;
         self.toward = toward;
+    }
+
+    /// Maps the continuation parameter [0, 1] to the load factors [`from`, `to`].
+    pub fn set_load_range(&mut self, from: f64, to: f64) {
+        self.load_range = (from, to);
     }
 
     /// Solves for an equilibrium with the solver's Newton method.
@@ -308,7 +317,8 @@ impl NewtonProblem for NetworkProblem<'_> {
         self.model.continuation_is_trivial()
     }
     fn set_continuation(&mut self, lambda: f64) {
-        self.model.set_load(lambda);
+        let (a, b) = self.load_range;
+        self.model.set_load(a + lambda * (b - a));
         // Prescribed variables moved: reference frames must follow before the next assembly.
         self.model.commit();
     }

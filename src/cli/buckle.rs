@@ -1,0 +1,133 @@
+//! `rodnet buckle SCENE.ron`: linear buckling factors and modes about the scene's rest state.
+
+use std::path::{Path, PathBuf};
+
+use clap::Args;
+
+use super::output::{bad, check_outputs, given, EXIT_OK};
+use crate::io::{atomic, stability::BucklingJson};
+use crate::network::stability;
+use crate::scene::{self, SceneError};
+
+#[derive(Args, Debug)]
+pub struct BuckleArgs {
+    /// Scene file (RON).
+    pub scene: PathBuf,
+    /// How many critical factors (and modes) to find.
+    #[arg(long, value_name = "K", default_value_t = 4, value_parser = clap::value_parser!(u32).range(1..=100))]
+    pub modes: u32,
+    /// Write the factors and modes as JSON here.
+    #[arg(long)]
+    pub json: Option<PathBuf>,
+    /// Write the mode shapes here, one OBJ object per mode.
+    #[arg(long, value_name = "OUT.obj")]
+    pub modes_obj: Option<PathBuf>,
+    /// Only the linear factors: skip the check of the first one along the nonlinear load path.
+    #[arg(long)]
+    pub linear_only: bool,
+    /// Print only the factors.
+    #[arg(long)]
+    pub quiet: bool,
+}
+
+pub fn run(a: &BuckleArgs) -> i32 {
+    let outs = given(&[("--json", &a.json), ("--modes-obj", &a.modes_obj)]);
+    if let Err(e) = check_outputs(&outs, &[a.scene.as_path()]) {
+        return bad(e);
+    }
+    let (sc, src) = match scene::load(&a.scene) {
+        Ok(s) => s,
+        Err(e) => return bad(e),
+    };
+    let label = a.scene.display().to_string();
+    let mut net = match crate::network::build(&sc) {
+        Ok(n) => n,
+        Err(e) => return bad(SceneError::from_field(&label, &src, &e)),
+    };
+    if net.model.contact.is_some() {
+        return bad(format_args!(
+            "{label}: buckle does not handle contact or bounds yet (remove obstacles and bounds)"
+        ));
+    }
+    let t0 = std::time::Instant::now();
+    let b = match stability::buckling(&mut net, a.modes as usize) {
+        Ok(b) => b,
+        Err(e) => return bad(format_args!("{label}: linear buckling: {e}")),
+    };
+    let rest = stability::rods_now(&net);
+    let shapes: Vec<_> = b
+        .modes
+        .iter()
+        .map(|m| stability::mode_shape(&net, m, crate::pipeline::MODE_AMPLITUDE))
+        .collect();
+    let path = match b.factors.first() {
+        Some(&first) if !a.linear_only => Some(stability::critical_on_path(
+            &mut net,
+            &crate::pipeline::settings_of(&sc),
+            first,
+        )),
+        _ => None,
+    };
+    let mut json = BucklingJson::new(&b, &rest, &shapes);
+    json.path = path.as_ref().map(Into::into);
+    json.seconds = t0.elapsed().as_secs_f64();
+    let mut files: Vec<(&Path, Vec<u8>)> = Vec::new();
+    if let Some(p) = &a.json {
+        match serde_json::to_vec_pretty(&json) {
+            Ok(bytes) => files.push((p, bytes)),
+            Err(e) => return bad(format_args!("cannot encode the results as JSON: {e}")),
+        }
+    }
+    if let Some(p) = &a.modes_obj {
+        let labels: Vec<String> = b
+            .factors
+            .iter()
+            .enumerate()
+            .map(|(i, f)| format!("mode_{} factor {f:.6e}", i + 1))
+            .collect();
+        files.push((
+            p,
+            crate::pipeline::modes_obj(&net, &labels, &b.modes).into_bytes(),
+        ));
+    }
+    if let Err((p, e)) = atomic::write_all(&files) {
+        return bad(format_args!("cannot write {}: {e}", p.display()));
+    }
+    if b.factors.is_empty() {
+        println!("{label}: no positive critical load factor: the loads do not make it buckle");
+    } else {
+        println!(
+            "{label}: critical load factors {} ({} subspace rounds, {:.3} s)",
+            b.factors
+                .iter()
+                .map(|f| format!("{f:.6e}"))
+                .collect::<Vec<_>>()
+                .join(", "),
+            b.rounds,
+            b.seconds
+        );
+    }
+    if let Some(pc) = &path {
+        match (pc.factor, b.factors.first()) {
+            (Some(f), Some(&lin)) => {
+                println!(
+                    "  along the load path: the lowest eigenvalue crosses zero at {f:.6e} \
+                     ({} equilibria, {} Newton iterations){}",
+                    pc.samples.len() - 1,
+                    pc.iterations,
+                    if (f - lin).abs() > 0.01 * lin {
+                        "; the structure deforms before it buckles: trust this factor, not the \
+                         linear one"
+                    } else {
+                        ""
+                    }
+                );
+            }
+            _ => println!(
+                "  along the load path: {}",
+                pc.note.as_deref().unwrap_or("no crossing")
+            ),
+        }
+    }
+    EXIT_OK
+}
