@@ -172,7 +172,15 @@ pub fn linear_buckling<P: NewtonProblem>(
         .zip(&nt.scales)
         .map(|(v, s)| (v / s).abs())
         .fold(0.0, f64::max);
-    if reach == 0.0 || !reach.is_finite() {
+    if !reach.is_finite() || v.iter().any(|x| !x.is_finite()) {
+        return Err(
+            "the linear response to the loads is not finite (prescribed motions too large \
+                    to linearize about the start, e.g. a clamp turned by half a turn): follow the \
+                    path instead (rodnet solve --modes at load steps)"
+                .into(),
+        );
+    }
+    if reach == 0.0 {
         return Err(
             "the loads do nothing to the structure at its start (no loads or prescribed \
                     motions), so no load factor makes it buckle"
