@@ -3,6 +3,7 @@
 
 mod buckle;
 mod gridshell;
+mod indent;
 mod network;
 mod output;
 mod plot;
@@ -18,6 +19,7 @@ pub use buckle::BuckleArgs;
 pub use gridshell::{
     HemisphereArgs, PathArg, SectionRatio, DEFAULT_RODS, DEFAULT_SUBDIVIDE, MAX_RODS,
 };
+pub use indent::IndentArgs;
 pub use network::{JointArg, NetworkArgs};
 pub use output::{EXIT_BAD_INPUT, EXIT_NOT_CONVERGED, EXIT_OK};
 pub use plot::PlotArgs;
@@ -69,6 +71,9 @@ pub enum Command {
     /// Linear buckling: the factors by which the scene's loads (and prescribed motions) can be
     /// multiplied before the structure buckles, and their modes.
     Buckle(BuckleArgs),
+    /// Indentation: solve the scene, then push one point by displacement control; its linear
+    /// stiffness, the force–depth curve and its limit points.
+    Indent(IndentArgs),
     /// Draw a results JSON as a PNG: orthographic views, rods coloured by bending stress.
     Plot(PlotArgs),
     /// Elastic gridshells: generate, form-find and compare with the analytic shape.
@@ -116,6 +121,7 @@ pub fn run(cli: Cli) -> i32 {
             &network,
         ),
         Command::Buckle(args) => buckle::run(&args),
+        Command::Indent(args) => indent::run(&args),
         Command::Gridshell {
             shape: GridshellCommand::Hemisphere(args),
         } => gridshell::run(args),

@@ -1,6 +1,8 @@
 //! Results, exports and file writing.
 pub mod atomic;
 pub mod csv;
+pub mod curve_plot;
+pub mod indent;
 pub mod obj;
 pub mod plot;
 pub mod results;

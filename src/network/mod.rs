@@ -7,6 +7,7 @@ pub mod buckle;
 pub mod build;
 pub mod contact;
 pub mod equilibrium;
+pub mod indent;
 pub mod info;
 pub mod joint;
 pub mod mechanism;

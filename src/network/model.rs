@@ -87,6 +87,10 @@ pub struct Model {
     pub n_free: usize,
     pub prescribed: Vec<Prescribed>,
     pub prescribed_rotations: Vec<PrescribedRotation>,
+    /// A second stage on top of the scene's full load (`network/indent.rs`): when not empty,
+    /// the scene's loads and prescribed motions stay at λ = 1 and only these motions follow the
+    /// continuation parameter.
+    pub staged: Vec<Prescribed>,
     /// Global edges as (node a, node b).
     pub edge_nodes: Vec<[usize; 2]>,
     /// Rest length of each global edge.
@@ -130,6 +134,7 @@ impl Model {
             n_free,
             prescribed: p.prescribed,
             prescribed_rotations: p.prescribed_rotations,
+            staged: Vec::new(),
             edge_nodes: p.edge_nodes,
             rest_lengths: p.rest_lengths,
             length_scale: p.scales.length,
@@ -250,12 +255,16 @@ impl Model {
 
     /// Sets the load factor and the prescribed variables for continuation parameter `lambda`.
     pub fn set_load(&mut self, lambda: f64) {
-        self.state.load_factor = lambda;
+        let scene = if self.staged.is_empty() { lambda } else { 1.0 };
+        self.state.load_factor = scene;
         for p in &self.prescribed {
+            self.state.q[p.var] = p.start + scene * (p.end - p.start);
+        }
+        for p in &self.staged {
             self.state.q[p.var] = p.start + lambda * (p.end - p.start);
         }
         for p in &self.prescribed_rotations {
-            let w = scalef(p.rotation, lambda);
+            let w = scalef(p.rotation, scene);
             let mut f = FrameRef::identity();
             f.commit(w);
             self.state.frames[p.frame] = f;
@@ -339,6 +348,9 @@ impl Model {
     /// True when the continuation parameter changes nothing: no external load and no
     /// prescribed motion.
     pub fn continuation_is_trivial(&self) -> bool {
+        if !self.staged.is_empty() {
+            return self.staged.iter().all(|p| p.start == p.end);
+        }
         let external = self.count_of(Category::External);
         external == 0
             && self.prescribed.iter().all(|p| p.start == p.end)

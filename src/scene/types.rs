@@ -179,10 +179,28 @@ pub struct JointCylinder {
     pub height: f64,
 }
 
-#[derive(Debug, Clone, Copy, PartialEq, Eq, Serialize, Deserialize)]
+#[derive(Debug, Clone, Copy, PartialEq, Serialize, Deserialize)]
 pub enum SupportKind {
     Pin,
     Clamp,
+    /// The node stays on the plane through its position (or its `move_to`) with this normal,
+    /// free within it. Normals along x, y or z only (docs/scene-format.md).
+    Roller {
+        normal: [f64; 3],
+    },
+}
+
+impl SupportKind {
+    /// The coordinate axis a Roller holds (its normal's one non-zero component).
+    pub fn roller_axis(&self) -> Option<usize> {
+        match self {
+            SupportKind::Roller { normal } => {
+                let nz: Vec<usize> = (0..3).filter(|&k| normal[k] != 0.0).collect();
+                (nz.len() == 1).then(|| nz[0])
+            }
+            _ => None,
+        }
+    }
 }
 
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]

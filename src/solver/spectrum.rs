@@ -286,6 +286,31 @@ pub fn linear_buckling<P: NewtonProblem>(
     })
 }
 
+/// fᵀH⁻¹f at the problem's current state: the displacement along a unit force f per unit of
+/// it, with every other unknown free (its inverse is the stiffness against f). An H that is
+/// not positive definite (an unstable or neutral state) has no such stiffness.
+pub fn compliance<P: NewtonProblem>(
+    p: &mut P,
+    f: &[f64],
+    ordering: Ordering,
+) -> Result<f64, String> {
+    let (mut nt, _) = newton_for(p, ordering);
+    let e = p.assemble(&mut nt.g, Some(&mut nt.chol.values));
+    if !e.is_finite() {
+        return Err("the energy is not finite at this state".into());
+    }
+    if nt.chol.factor(0.0).is_err() {
+        return Err(
+            "the Hessian is not positive definite here (an unstable or neutral state): \
+                    no stiffness"
+                .into(),
+        );
+    }
+    let mut x = f.to_vec();
+    nt.chol.solve(&mut x);
+    Ok(x.iter().zip(f).map(|(a, b)| a * b).sum())
+}
+
 /// A Newton workspace over `p` with its Hessian pattern, factor and unknown scales.
 fn newton_for<P: NewtonProblem>(p: &mut P, ordering: Ordering) -> (Newton, Vec<usize>) {
     let n = p.num_free();

@@ -35,8 +35,13 @@ pub fn apply(
     for (si, s) in rest.scene.supports.iter().enumerate() {
         let (r, rnode) = rest.site(&s.rod, s.vertex);
         let node = net.rods[r].nodes[rnode];
-        for v in layout.node(node) {
-            fixed[v] = true;
+        // A Roller holds (and moves) one coordinate; Pins and Clamps all three.
+        let held: Vec<usize> = match s.kind.roller_axis() {
+            Some(k) => vec![k],
+            None => vec![0, 1, 2],
+        };
+        for &k in &held {
+            fixed[layout.node_coord(node, k)] = true;
         }
         if let Some(target) = s.move_to {
             match moved.insert(node, target) {
@@ -49,19 +54,11 @@ pub fn apply(
                     ))
                 }
                 Some(_) => {}
-                None => out
-                    .prescribed
-                    .extend(
-                        layout
-                            .node(node)
-                            .iter()
-                            .enumerate()
-                            .map(|(k, &var)| Prescribed {
-                                var,
-                                start: net.rest_pos[node][k],
-                                end: target[k],
-                            }),
-                    ),
+                None => out.prescribed.extend(held.iter().map(|&k| Prescribed {
+                    var: layout.node_coord(node, k),
+                    start: net.rest_pos[node][k],
+                    end: target[k],
+                })),
             }
         }
         let frame = match s.kind {
@@ -69,7 +66,7 @@ pub fn apply(
                 .port_of
                 .get(&(r, rnode))
                 .map(|&p| table.ports[p].frame),
-            SupportKind::Pin => None,
+            SupportKind::Pin | SupportKind::Roller { .. } => None,
         };
         if let Some(f) = frame {
             // Clamps on one frame (one rod vertex twice, or rods of one Rigid or Hinge joint)

@@ -40,6 +40,18 @@ pub(super) fn supports(s: &Scene, rods: &RodIndex, in_joint: &InJoint) -> Result
                 return err("move_to", format!("must be finite, got {t:?}"));
             }
         }
+        if let SupportKind::Roller { normal } = sp.kind {
+            if !finite3(&normal) || sp.kind.roller_axis().is_none() {
+                return err(
+                    "kind",
+                    format!(
+                        "a Roller's normal must lie along x, y or z (one non-zero component), got \
+                         {normal:?}: a general normal needs a change of variables that rodnet does \
+                         not have yet"
+                    ),
+                );
+            }
+        }
         let node = node_of(&sp.rod, sp.vertex);
         let Some(&(k, prev)) = motion.get(&node) else {
             motion.insert(node, (i, sp.move_to));

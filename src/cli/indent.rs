@@ -1,0 +1,254 @@
+//! `rodnet indent SCENE.ron --at JOINT|ROD:VERTEX|apex --depth D`: solve the scene, then push
+//! one point by displacement control; linear stiffness, force–depth curve, limit points.
+
+use std::path::{Path, PathBuf};
+
+use clap::Args;
+
+use super::output::{bad, check_outputs, given, EXIT_NOT_CONVERGED, EXIT_OK};
+use crate::io::indent::{curve_csv, IndentJson};
+use crate::io::{atomic, curve_plot};
+use crate::network::indent::{linear_stiffness, push, Push};
+use crate::pipeline as job;
+use crate::scene::{self, Scene, SceneError};
+
+#[derive(Args, Debug)]
+pub struct IndentArgs {
+    /// Scene file (RON).
+    pub scene: PathBuf,
+    /// The point pushed: a joint's name, ROD:VERTEX (an input vertex), or `apex` (the joint
+    /// farthest against the direction; the rod vertex farthest when there are no joints).
+    #[arg(long)]
+    pub at: String,
+    /// How far to push it, m.
+    #[arg(long)]
+    pub depth: f64,
+    /// Direction of the push (default down: 0,0,-1). Along x, y or z the point is held along
+    /// the push only (frictionless); otherwise on the line of the push (sticking).
+    #[arg(long, value_name = "X,Y,Z", default_value = "0,0,-1")]
+    pub direction: String,
+    /// Displacement-controlled steps to the full depth.
+    #[arg(long, default_value_t = 20, value_parser = clap::value_parser!(u32).range(1..=10000))]
+    pub steps: u32,
+    /// Write the force–depth curve as CSV here (depth m, force N).
+    #[arg(long)]
+    pub csv: Option<PathBuf>,
+    /// Draw the force–depth curve as a PNG here.
+    #[arg(long)]
+    pub plot: Option<PathBuf>,
+    /// Write the results as JSON here.
+    #[arg(long)]
+    pub json: Option<PathBuf>,
+    /// Only the summary line.
+    #[arg(long)]
+    pub quiet: bool,
+}
+
+pub fn run(a: &IndentArgs) -> i32 {
+    let outs = given(&[("--csv", &a.csv), ("--plot", &a.plot), ("--json", &a.json)]);
+    if let Err(e) = check_outputs(&outs, &[a.scene.as_path()]) {
+        return bad(e);
+    }
+    let direction = match parse_direction(&a.direction) {
+        Ok(d) => d,
+        Err(e) => return bad(format_args!("--direction: {e}")),
+    };
+    if !(a.depth.is_finite() && a.depth > 0.0) {
+        return bad(format_args!(
+            "--depth must be a positive length in m, got {}",
+            a.depth
+        ));
+    }
+    let (sc, src) = match scene::load(&a.scene) {
+        Ok(s) => s,
+        Err(e) => return bad(e),
+    };
+    let label = a.scene.display().to_string();
+    let settings = job::settings_of(&sc);
+    let mut sol = match job::solve_scene(&sc, &settings) {
+        Ok(s) => s,
+        Err(e) => return bad(SceneError::from_field(&label, &src, &e)),
+    };
+    if !sol.results.converged {
+        eprintln!(
+            "error: {label}: the scene itself did not converge ({}); nothing pushed",
+            sol.report.message.clone().unwrap_or_default()
+        );
+        return EXIT_NOT_CONVERGED;
+    }
+    let (rod, vertex, joint) = match locate(&a.at, &sc, &sol, direction) {
+        Ok(p) => p,
+        Err(e) => return bad(format_args!("--at {}: {e}", a.at)),
+    };
+    let Some(node) = sol.network.rod(&rod).and_then(|r| r.vertex_node(vertex)) else {
+        return bad(format_args!("--at {}: no such vertex", a.at));
+    };
+    let position = sol.network.model.position(node);
+    let k = linear_stiffness(&mut sol.network, node, direction);
+    let how = Push {
+        rod: rod.clone(),
+        vertex,
+        direction,
+        depth: a.depth,
+        steps: a.steps as usize,
+    };
+    let curve = match push(&sc, &sol.network, node, &how, &settings) {
+        Ok(c) => c,
+        Err(e) => return bad(format_args!("{label}: {e}")),
+    };
+    let (pts, lims) = IndentJson::curve_of(&curve);
+    let out = IndentJson {
+        rod,
+        vertex,
+        joint,
+        position,
+        direction,
+        depth: a.depth,
+        linear_stiffness: k.as_ref().ok().copied(),
+        linear_stiffness_note: k.as_ref().err().cloned(),
+        frictionless: curve.frictionless,
+        max_lateral_force: curve.lateral,
+        curve: pts,
+        limit_points: lims,
+        complete: curve.complete,
+        message: curve.message.clone(),
+        solve_iterations: sol.report.iterations,
+        iterations: curve.iterations,
+        seconds: curve.seconds,
+    };
+    if let Err(e) = write(a, &out, &curve.points, &curve.limit_points) {
+        return bad(e);
+    }
+    summary(&label, &out);
+    if out.complete {
+        EXIT_OK
+    } else {
+        eprintln!(
+            "error: {label}: {}",
+            out.message.clone().unwrap_or_default()
+        );
+        EXIT_NOT_CONVERGED
+    }
+}
+
+fn write(
+    a: &IndentArgs,
+    out: &IndentJson,
+    points: &[(f64, f64)],
+    limits: &[(f64, f64)],
+) -> Result<(), String> {
+    let mut files: Vec<(&Path, Vec<u8>)> = Vec::new();
+    if let Some(p) = &a.json {
+        let b = serde_json::to_vec_pretty(out).map_err(|e| format!("cannot encode JSON: {e}"))?;
+        files.push((p, b));
+    }
+    if let Some(p) = &a.csv {
+        files.push((p, curve_csv(points).into_bytes()));
+    }
+    if let Some(p) = &a.plot {
+        let png = curve_plot::curve(
+            points,
+            limits,
+            ("DEPTH, M", "FORCE, N"),
+            "INDENTATION: FORCE AGAINST DEPTH",
+            (900, 600),
+        )?;
+        files.push((p, png));
+    }
+    atomic::write_all(&files).map_err(|(p, e)| format!("cannot write {}: {e}", p.display()))
+}
+
+fn summary(label: &str, o: &IndentJson) {
+    let k = o.linear_stiffness.map_or_else(
+        || "none (unstable state)".into(),
+        |k| format!("{k:.6e} N/m"),
+    );
+    let last = o.curve.last().copied().unwrap_or([0.0, 0.0]);
+    println!(
+        "{label}: pushed {} vertex {} by {:.4e} m ({}): linear stiffness {k}; force {:.6e} N at \
+         depth {:.4e} m; {} limit point(s); {} Newton iterations, {:.3} s",
+        o.rod,
+        o.vertex,
+        o.depth,
+        if o.frictionless {
+            "frictionless"
+        } else {
+            "sticking"
+        },
+        last[1],
+        last[0],
+        o.limit_points.len(),
+        o.iterations,
+        o.seconds
+    );
+}
+
+fn parse_direction(s: &str) -> Result<[f64; 3], String> {
+    let v: Vec<f64> = s
+        .split(',')
+        .map(|t| t.trim().parse::<f64>())
+        .collect::<Result<_, _>>()
+        .map_err(|e| format!("expected X,Y,Z, got {s:?} ({e})"))?;
+    let [x, y, z] = v[..] else {
+        return Err(format!("expected three numbers X,Y,Z, got {s:?}"));
+    };
+    let n = (x * x + y * y + z * z).sqrt();
+    if !(n.is_finite() && n > 1e-150) {
+        return Err(format!("must be a finite, non-zero direction, got {s:?}"));
+    }
+    Ok([x / n, y / n, z / n])
+}
+
+/// The pushed point as (rod, input vertex, joint name).
+fn locate(
+    at: &str,
+    sc: &Scene,
+    sol: &job::Solution,
+    d: [f64; 3],
+) -> Result<(String, usize, Option<String>), String> {
+    let along = |p: [f64; 3]| p[0] * d[0] + p[1] * d[1] + p[2] * d[2];
+    if at == "apex" {
+        let net = &sol.network;
+        let best = if sc.joints.is_empty() {
+            net.rods
+                .iter()
+                .flat_map(|r| {
+                    (0..r.nodes.len().div_ceil(r.subdivide.max(1)))
+                        .filter_map(move |v| r.vertex_node(v).map(|n| (r.name.clone(), v, n)))
+                })
+                .map(|(r, v, n)| (along(net.model.position(n)), r, v, None))
+                .min_by(|a, b| a.0.total_cmp(&b.0))
+        } else {
+            sc.joints
+                .iter()
+                .filter_map(|j| {
+                    let info = net.joints.iter().find(|i| i.name == j.name)?;
+                    let (r, v) = j.at[0].clone();
+                    Some((
+                        along(net.model.position(info.node)),
+                        r,
+                        v,
+                        Some(j.name.clone()),
+                    ))
+                })
+                .min_by(|a, b| a.0.total_cmp(&b.0))
+        };
+        return best
+            .map(|(_, r, v, j)| (r, v, j))
+            .ok_or_else(|| "the scene has no vertex to push".into());
+    }
+    if let Some(j) = sc.joints.iter().find(|j| j.name == at) {
+        let (r, v) = j.at[0].clone();
+        return Ok((r, v, Some(j.name.clone())));
+    }
+    if let Some((rod, v)) = at.rsplit_once(':') {
+        let v: usize = v
+            .parse()
+            .map_err(|_| format!("expected ROD:VERTEX with a vertex number, got {at:?}"))?;
+        if sc.rods.iter().any(|r| r.name == rod) {
+            return Ok((rod.to_string(), v, None));
+        }
+        return Err(format!("no rod named {rod:?}"));
+    }
+    Err("expected a joint's name, ROD:VERTEX or apex".into())
+}
