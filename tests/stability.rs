@@ -323,3 +323,36 @@ fn buckle_path_check_rejects_the_spurious_factor_of_a_bent_cantilever() {
     let text = String::from_utf8_lossy(&out.stdout);
     assert!(text.contains("no buckling there"), "{text}");
 }
+
+/// `rodnet gridshell hemisphere --modes K`: the form-found dome's lowest eigenvalues, stable.
+#[test]
+fn the_gridshell_job_reports_its_modes() {
+    let d = tmpdir("gridshell");
+    let json = d.join("h.json");
+    let out = rodnet()
+        .args([
+            "gridshell",
+            "hemisphere",
+            "--rods",
+            "6",
+            "--modes",
+            "3",
+            "--quiet",
+        ])
+        .arg("--json")
+        .arg(&json)
+        .output()
+        .unwrap();
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let v: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    let st = &v["stability"];
+    assert_eq!(st["stable"], true, "{st}");
+    assert_eq!(st["eigenvalues"].as_array().unwrap().len(), 3);
+    assert!(st["eigenvalues"][0].as_f64().unwrap() > 0.0);
+}

@@ -88,6 +88,10 @@ pub struct HemisphereArgs {
     /// default, into the current directory, applies when no output option is given).
     #[arg(long)]
     pub out_dir: Option<PathBuf>,
+    /// Eigen-analysis of the dome: the lowest K eigenvalues (N/m) as a "stability" block in the
+    /// results JSON, as for `rodnet solve --modes`.
+    #[arg(long, value_name = "K", value_parser = clap::value_parser!(u32).range(1..=200))]
+    pub modes: Option<u32>,
     /// No progress output.
     #[arg(long)]
     pub quiet: bool,
@@ -311,10 +315,16 @@ pub(super) fn run(a: HemisphereArgs) -> i32 {
     let tracker = progress::Tracker::begin(spec.load_steps, show_progress(a.quiet));
     let result = gridshell_job::run(&spec, a.start_cap, Some(tracker.hook()));
     tracker.finish();
-    let run = match result {
+    let mut run = match result {
         Ok(r) => r,
         Err(e) => return bad(invalid(&e)),
     };
+    if let (Some(k), true) = (a.modes, run.results.all_finite()) {
+        match crate::network::stability::analyse(&mut run.network, k as usize) {
+            Ok(st) => run.results.stability = Some((&st).into()),
+            Err(e) => return bad(format_args!("eigen-analysis: {e}")),
+        }
+    }
     let r = &run.results;
     let diagnostic = diagnostic(&r.solver.message);
     if !r.all_finite() {

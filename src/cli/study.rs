@@ -91,6 +91,7 @@ fn hemisphere_problem(a: &ConvergenceArgs) -> Result<Problem, String> {
         obj: None,
         report: None,
         out_dir: None,
+        modes: None,
         quiet: a.quiet,
     };
     let spec = hemisphere_spec(&h)?;
