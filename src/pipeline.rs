@@ -89,6 +89,13 @@ pub fn analyse_modes(
         );
     }
     let st = crate::network::stability::analyse(&mut sol.network, k)?;
+    if !st.converged {
+        eprintln!(
+            "warning: the {k} lowest eigenvalues did not settle within {} rounds (largest \
+             relative residual {:.3e}); stability.converged is false",
+            st.rounds, st.residual
+        );
+    }
     sol.results.stability = Some((&st).into());
     Ok(st)
 }

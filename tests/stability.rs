@@ -233,6 +233,7 @@ fn modes_and_buckle_commands_report_and_draw_the_modes() {
     assert_eq!(st["stable"], true, "{st}");
     assert_eq!(st["negative"], 0);
     assert_eq!(st["unit"], "N/m");
+    assert_eq!(st["converged"], true);
     let ev: Vec<f64> = st["eigenvalues"]
         .as_array()
         .unwrap()
@@ -276,6 +277,7 @@ fn modes_and_buckle_commands_report_and_draw_the_modes() {
     // The load is half Euler's: the factor is 2, within the n = 32 error (2e-4).
     assert!((f[0] - 2.0).abs() < 1e-3, "{f:?}");
     assert_eq!(b["modes"].as_array().unwrap().len(), 2);
+    assert_eq!(b["converged"], true);
     // Checked along the nonlinear path: the straight column's tangent stiffness loses its
     // lowest eigenvalue at the same factor.
     let on_path = b["path"]["critical_load_factor"]

@@ -54,6 +54,12 @@ pub fn run(a: &BuckleArgs) -> i32 {
         Ok(b) => b,
         Err(e) => return bad(format_args!("{label}: linear buckling: {e}")),
     };
+    if !b.converged {
+        eprintln!(
+            "warning: the factors did not settle within {} rounds; converged is false in the JSON",
+            b.rounds
+        );
+    }
     let rest = stability::rods_now(&net);
     let shapes: Vec<_> = b
         .modes

@@ -36,6 +36,8 @@ pub struct StabilityJson {
     /// Largest relative residual of the eigenpairs, subspace rounds, seconds.
     pub residual: f64,
     pub rounds: usize,
+    /// The eigenvalues settled within the iteration limit (else they are the last round's).
+    pub converged: bool,
     pub seconds: f64,
 }
 
@@ -53,6 +55,7 @@ impl From<&Stability> for StabilityJson {
             },
             residual: s.residual,
             rounds: s.rounds,
+            converged: s.converged,
             seconds: s.seconds,
         }
     }
@@ -104,6 +107,8 @@ pub struct BucklingJson {
     /// structure buckles, ascending (positive only).
     pub critical_load_factors: Vec<f64>,
     pub modes: Vec<BucklingModeJson>,
+    /// The factors settled within the iteration limit.
+    pub converged: bool,
     /// The first factor checked along the nonlinear path (absent with `--linear-only`).
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub path: Option<PathJson>,
@@ -157,6 +162,7 @@ impl BucklingJson {
                 .into(),
             critical_load_factors: b.factors.clone(),
             modes,
+            converged: b.converged,
             path: None,
             rounds: b.rounds,
             seconds: b.seconds,

@@ -34,6 +34,8 @@ pub struct Stability {
     /// Largest relative residual of the eigenpairs, subspace rounds, seconds.
     pub residual: f64,
     pub rounds: usize,
+    /// The eigenvalues settled within the iteration limit.
+    pub converged: bool,
     pub seconds: f64,
     /// Mode shapes, W-normalized, over the free unknowns (for `--modes-obj`).
     pub modes: Vec<Vec<f64>>,
@@ -68,6 +70,7 @@ pub fn analyse(net: &mut Network, k: usize) -> Result<Stability, String> {
         zero_kind,
         residual: sp.residual,
         rounds: sp.rounds,
+        converged: sp.converged,
         seconds: t0.elapsed().as_secs_f64(),
         modes: sp.vectors,
     })
@@ -90,6 +93,7 @@ pub struct LinearBuckling {
     pub factors: Vec<f64>,
     pub modes: Vec<Vec<f64>>,
     pub rounds: usize,
+    pub converged: bool,
     pub seconds: f64,
 }
 
@@ -102,6 +106,7 @@ pub fn buckling(net: &mut Network, k: usize) -> Result<LinearBuckling, String> {
         factors: b.factors,
         modes: b.modes,
         rounds: b.rounds,
+        converged: b.converged,
         seconds: t0.elapsed().as_secs_f64(),
     })
 }

@@ -30,6 +30,9 @@ pub struct Spectrum {
     /// Largest ‖Hu − λWu‖_W⁻¹ over the scale among the returned pairs.
     pub residual: f64,
     pub rounds: usize,
+    /// The K lowest Ritz values settled before `MAX_ROUNDS` (else the values are the last
+    /// round's, with `residual` saying how far off).
+    pub converged: bool,
     /// The shift τ that made H + τW positive definite for the inverse iteration.
     pub shift: f64,
 }
@@ -65,6 +68,7 @@ pub fn lowest_modes<P: NewtonProblem>(
             scale,
             residual: 0.0,
             rounds: 0,
+            converged: true,
             shift,
         });
     }
@@ -75,6 +79,7 @@ pub fn lowest_modes<P: NewtonProblem>(
     let mut last = vec![f64::INFINITY; k];
     let mut pairs: Vec<(f64, Vec<f64>)> = Vec::new();
     let mut rounds = 0;
+    let mut converged = false;
     while rounds < MAX_ROUNDS {
         rounds += 1;
         orthonormalize(&mut v, &w);
@@ -98,6 +103,7 @@ pub fn lowest_modes<P: NewtonProblem>(
                 .all(|(a, b)| (a - b).abs() <= RITZ_TOLERANCE * a.abs().max(1e-8 * scale));
         last = now;
         if done {
+            converged = true;
             break;
         }
         // v ← (H + τW)⁻¹ W v on the Ritz vectors.
@@ -123,6 +129,7 @@ pub fn lowest_modes<P: NewtonProblem>(
         scale,
         residual,
         rounds,
+        converged,
         shift,
     })
 }
@@ -137,6 +144,8 @@ pub struct Buckling {
     pub rounds: usize,
     /// The load factor of the central difference that gave K₁.
     pub step: f64,
+    /// The wanted factors settled before `MAX_ROUNDS`.
+    pub converged: bool,
 }
 
 /// Linear buckling of the problem about its state at λ = 0: the `k` smallest positive factors.
@@ -221,6 +230,7 @@ pub fn linear_buckling<P: NewtonProblem>(
     let mut last = vec![f64::INFINITY; k];
     let mut found: Vec<(f64, Vec<f64>)> = Vec::new();
     let mut rounds = 0;
+    let mut converged = false;
     while rounds < MAX_ROUNDS {
         rounds += 1;
         orthonormalize(&mut x, &w);
@@ -257,6 +267,7 @@ pub fn linear_buckling<P: NewtonProblem>(
         last = now;
         found = pairs;
         if done {
+            converged = true;
             break;
         }
         // x ← K₀⁻¹ B x on the Ritz vectors.
@@ -283,6 +294,7 @@ pub fn linear_buckling<P: NewtonProblem>(
         modes,
         rounds,
         step: eps,
+        converged,
     })
 }
 
