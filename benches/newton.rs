@@ -28,6 +28,7 @@ fn material(r: f64) -> Material {
         shear_modulus: None,
         density: 1000.0,
         section: Section::Circle { radius: r },
+        yield_strength: None,
     }
 }
 

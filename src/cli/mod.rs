@@ -55,6 +55,10 @@ pub enum Command {
         /// Write one CSV row per node here.
         #[arg(long)]
         csv: Option<PathBuf>,
+        /// Write one CSV row per edge here: its internal forces, von Mises stress and
+        /// utilization.
+        #[arg(long, value_name = "FILE.csv")]
+        forces_csv: Option<PathBuf>,
         /// Eigen-analysis at the equilibrium: the lowest K eigenvalues (N/m) and whether the
         /// state is stable, as a "stability" block in the results JSON.
         #[arg(long, value_name = "K", value_parser = clap::value_parser!(u32).range(1..=200))]
@@ -104,6 +108,7 @@ pub fn run(cli: Cli) -> i32 {
             json,
             obj,
             csv,
+            forces_csv,
             modes,
             modes_obj,
             quiet,
@@ -114,6 +119,7 @@ pub fn run(cli: Cli) -> i32 {
                 json,
                 obj,
                 csv,
+                forces_csv,
                 modes: modes.map(|k| k as usize),
                 modes_obj,
             },

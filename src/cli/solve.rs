@@ -15,6 +15,7 @@ pub(super) struct Outputs {
     pub json: Option<PathBuf>,
     pub obj: Option<PathBuf>,
     pub csv: Option<PathBuf>,
+    pub forces_csv: Option<PathBuf>,
     /// The eigen-analysis asked for (`--modes K`) and where its mode shapes go.
     pub modes: Option<usize>,
     pub modes_obj: Option<PathBuf>,
@@ -26,6 +27,7 @@ impl Outputs {
             ("--json", &self.json),
             ("--obj", &self.obj),
             ("--csv", &self.csv),
+            ("--forces-csv", &self.forces_csv),
             ("--modes-obj", &self.modes_obj),
         ])
     }
@@ -172,6 +174,9 @@ fn solve_and_write(label: &str, sc: &Scene, source: &Source, outputs: Outputs, q
     }
     if let Some(p) = &outputs.csv {
         files.push((p, csv::to_csv(&sol.equilibrium).into_bytes()));
+    }
+    if let Some(p) = &outputs.forces_csv {
+        files.push((p, csv::to_forces_csv(&sol.equilibrium).into_bytes()));
     }
     if let (Some(p), Some(st)) = (&outputs.modes_obj, &modes) {
         let labels: Vec<String> = st

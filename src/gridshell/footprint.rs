@@ -214,6 +214,7 @@ pub fn footprint(spec: &HemisphereSpec) -> Footprint {
             shear_modulus: None,
             density: 0.0,
             section: spec.section,
+            yield_strength: None,
         },
     );
     let scene = Scene {

@@ -5,7 +5,7 @@ use serde::{Deserialize, Serialize};
 
 use crate::network::contact::Source;
 use crate::network::equilibrium::{
-    ConstraintForces, Equilibrium, ReferenceCheck, RodEnergy, TargetCheck,
+    ConstraintForces, EdgeForces, Equilibrium, ReferenceCheck, RodEnergy, TargetCheck, Utilization,
 };
 use crate::network::model::EnergyParts;
 use crate::solver::NewtonReport;
@@ -51,6 +51,48 @@ pub struct RodJson {
     pub energy: RodEnergy,
     /// The rod's length after deformation, m.
     pub length: f64,
+    /// Internal force and moment of each edge in its material frame (contract name; sign
+    /// conventions in docs/internal-forces.md).
+    pub forces: Vec<EdgeForceJson>,
+    /// Largest von Mises stress over yield strength among the rod's edges (materials with a
+    /// `yield_strength` only).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub utilization: Option<f64>,
+}
+
+/// One edge's entry of `forces`: what the part of the rod after the edge's midpoint exerts on
+/// the part before it, in the edge's material frame (m1, m2, t).
+#[derive(Debug, Clone, Copy, Default, PartialEq, Serialize, Deserialize)]
+pub struct EdgeForceJson {
+    /// N, tension positive.
+    pub axial: f64,
+    /// (along m1, along m2), N.
+    pub shear: [f64; 2],
+    /// (about m1, about m2) at the edge's midpoint, N·m.
+    pub moment: [f64; 2],
+    /// About t, N·m.
+    pub torsion: f64,
+}
+
+impl From<&EdgeForces> for EdgeForceJson {
+    fn from(f: &EdgeForces) -> Self {
+        EdgeForceJson {
+            axial: f.axial,
+            shear: f.shear,
+            moment: f.moment,
+            torsion: f.torsion,
+        }
+    }
+}
+
+impl EdgeForceJson {
+    fn all_finite(&self) -> bool {
+        [self.axial, self.torsion]
+            .iter()
+            .chain(&self.shear)
+            .chain(&self.moment)
+            .all(|v| v.is_finite())
+    }
 }
 
 #[derive(Debug, Clone, Serialize, Deserialize)]
@@ -223,6 +265,9 @@ pub struct Results {
     /// What the scene probably did not mean (`scene::validate::warnings`), as `field: message`.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub warnings: Vec<String>,
+    /// Scenes with a material's `yield_strength`: the most utilized edge.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub utilization: Option<Utilization>,
 }
 
 /// The `reference` block of the results JSON.
@@ -256,6 +301,8 @@ impl Results {
                     bending_stress,
                     energy: r.energy,
                     length: r.length,
+                    forces: r.forces.iter().map(EdgeForceJson::from).collect(),
+                    utilization: r.utilization,
                 }
             })
             .collect();
@@ -325,6 +372,7 @@ impl Results {
             kkt,
             stability: None,
             warnings: Vec::new(),
+            utilization: eq.utilization.clone(),
         }
     }
 
@@ -350,6 +398,8 @@ impl Results {
                 r.points.iter().flatten().all(fin)
                     && r.twist.iter().all(fin)
                     && r.bending_stress.iter().all(fin)
+                    && r.forces.iter().all(EdgeForceJson::all_finite)
+                    && r.utilization.iter().all(fin)
                     && [r.max_bending_stress, r.length, re.total, re.stretch]
                         .iter()
                         .chain(&[re.bend, re.twist])
@@ -375,6 +425,7 @@ impl Results {
                 .iter()
                 .flatten()
                 .all(|c| c.force.iter().all(fin) && c.gap.is_finite())
+            && self.utilization.as_ref().is_none_or(|u| u.max.is_finite())
     }
 }
 

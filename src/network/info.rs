@@ -16,6 +16,8 @@ pub struct RodInfo {
     pub stiffness: Stiffness,
     pub section: Section,
     pub young_modulus: f64,
+    /// The material's yield strength, Pa, when given (utilization).
+    pub yield_strength: Option<f64>,
 }
 
 impl RodInfo {

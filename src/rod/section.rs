@@ -88,6 +88,48 @@ impl Section {
         }
     }
 
+    /// Largest |normal stress| over the section under axial force `n` (N, tension positive) and
+    /// bending moment `moment` = (M·m1, M·m2) (N·m). The stress at y1 m1 + y2 m2 is
+    /// σ = n/A + (M·m1) y2/I2 − (M·m2) y1/I1, so its largest magnitude is |n|/A plus the largest
+    /// bending part over the boundary: r|M|/I (circle), √((b M·m1/I2)² + (a M·m2/I1)²)
+    /// (ellipse), at a corner (w/2)|M·m2|/I1 + (h/2)|M·m1|/I2 (rectangle).
+    pub fn max_normal_stress(&self, n: f64, moment: [f64; 2]) -> f64 {
+        let (i1, i2) = self.second_moments();
+        let (c1, c2) = self.half_extents();
+        // Bending stresses at the ends of each axis: (M·m2) acts along y1, (M·m1) along y2.
+        let (s1, s2) = (moment[1] * c1 / i1, moment[0] * c2 / i2);
+        let bending = match self {
+            Section::Circle { .. } | Section::Ellipse { .. } => (s1 * s1 + s2 * s2).sqrt(),
+            Section::Rectangle { .. } => s1.abs() + s2.abs(),
+        };
+        n.abs() / self.area() + bending
+    }
+
+    /// Largest torsional shear stress over the section under torque `t` (N·m):
+    /// - circle: |t| r / J;
+    /// - ellipse, semi-axes a ≥ b: 2|t|/(π a b²), at the ends of the minor axis (Roark's Formulas
+    ///   for Stress and Strain, Table 10.7 case 2);
+    /// - rectangle, sides 2a ≥ 2b: 3|t|/(8 a b²) · [1 + 0.6095 β + 0.8865 β² − 1.8023 β³ +
+    ///   0.9100 β⁴], β = b/a, at the middle of the long sides (Table 10.7 case 4, the same case
+    ///   as the torsion constant J).
+    pub fn max_torsion_stress(&self, t: f64) -> f64 {
+        use std::f64::consts::PI;
+        let t = t.abs();
+        match *self {
+            Section::Circle { radius } => t * radius / self.torsion_constant(),
+            Section::Ellipse { a, b } => {
+                let (a, b) = (a.max(b), a.min(b));
+                2.0 * t / (PI * a * b * b)
+            }
+            Section::Rectangle { width, height } => {
+                let (a, b) = (0.5 * width.max(height), 0.5 * width.min(height));
+                let r = b / a;
+                3.0 * t / (8.0 * a * b * b)
+                    * (1.0 + 0.6095 * r + 0.8865 * r * r - 1.8023 * r.powi(3) + 0.91 * r.powi(4))
+            }
+        }
+    }
+
     pub fn stiffness(&self, young: f64, shear: f64, density: f64) -> Stiffness {
         let (i1, i2) = self.second_moments();
         Stiffness {
@@ -129,5 +171,46 @@ mod tests {
         }
         .torsion_constant();
         assert!((j - (100.0 / 3.0 - 0.21)).abs() < 1e-9, "{j}");
+    }
+
+    #[test]
+    fn torsion_stresses_match_the_classical_values() {
+        let t = 2.0;
+        // Circle: τ = T r / J = 2T/(π r³); the ellipse with equal axes is the circle.
+        let c = Section::Circle { radius: 0.1 }.max_torsion_stress(t);
+        assert!((c - 2.0 * t / (std::f64::consts::PI * 1e-3)).abs() < 1e-9 * c);
+        let e = Section::Ellipse { a: 0.1, b: 0.1 }.max_torsion_stress(t);
+        assert!((c - e).abs() < 1e-12 * c);
+        // Square of side s: τ = T/(0.208 s³) (Timoshenko & Goodier).
+        let sq = Section::Rectangle {
+            width: 1.0,
+            height: 1.0,
+        }
+        .max_torsion_stress(t);
+        assert!((sq - t / 0.208).abs() / sq < 2e-3, "{sq}");
+        // Thin strip s × t: τ → 3T/(s t²).
+        let strip = Section::Rectangle {
+            width: 1000.0,
+            height: 1.0,
+        }
+        .max_torsion_stress(t);
+        assert!((strip - 3.0 * t / 1000.0).abs() / strip < 1e-3, "{strip}");
+    }
+
+    #[test]
+    fn normal_stress_peaks_at_the_extreme_fibre() {
+        // Rectangle w × h: n/A + 6|M·m2|/(h w²) + 6|M·m1|/(w h²).
+        let r = Section::Rectangle {
+            width: 0.2,
+            height: 0.1,
+        };
+        let s = r.max_normal_stress(-3.0, [5.0, -7.0]);
+        let want = 3.0 / 0.02 + 6.0 * 7.0 / (0.1 * 0.04) + 6.0 * 5.0 / (0.2 * 0.01);
+        assert!((s - want).abs() < 1e-9 * want, "{s} vs {want}");
+        // Circle: n/A + 4|M|/(π r³).
+        let c = Section::Circle { radius: 0.1 };
+        let s = c.max_normal_stress(0.0, [3.0, 4.0]);
+        let want = 4.0 * 5.0 / (std::f64::consts::PI * 1e-3);
+        assert!((s - want).abs() < 1e-9 * want);
     }
 }

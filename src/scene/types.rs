@@ -49,6 +49,9 @@ pub struct Material {
     #[serde(default)]
     pub density: f64,
     pub section: Section,
+    /// Pa (optional): the results then report each rod's utilization (docs/internal-forces.md).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub yield_strength: Option<f64>,
 }
 
 impl Material {

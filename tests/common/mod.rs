@@ -36,6 +36,7 @@ pub fn material_ei(ei: f64, r: f64, nu: f64) -> Material {
         shear_modulus: None,
         density: 0.0,
         section: Section::Circle { radius: r },
+        yield_strength: None,
     }
 }
 

@@ -92,6 +92,7 @@ fn nodes(rest: &Rest, joined: &Joined) -> (Vec<RodInfo>, Vec<[f64; 3]>) {
                 .stiffness(mat.young_modulus, mat.shear(), mat.density),
             section: mat.section,
             young_modulus: mat.young_modulus,
+            yield_strength: mat.yield_strength,
         });
     }
     (rods, rest_pos)

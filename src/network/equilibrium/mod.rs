@@ -4,6 +4,7 @@
 //! formats (`io`) only format this value.
 
 mod constraints;
+mod internal_forces;
 mod load_energy;
 mod reference;
 mod rod_energy;
@@ -19,6 +20,7 @@ use crate::scene::Scene;
 use crate::solver::NewtonReport;
 
 pub use constraints::{ConstraintForces, ContactForce, Kkt};
+pub use internal_forces::{von_mises, EdgeForces};
 pub use reference::ReferenceCheck;
 pub use rod_energy::RodEnergy;
 pub use stress::VertexBending;
@@ -39,6 +41,20 @@ pub struct RodEquilibrium {
     pub bending: Vec<VertexBending>,
     /// Axial force EA (|e|/|ē| − 1) in each edge, N (tension positive).
     pub axial_force: Vec<f64>,
+    /// Internal force and moment of each edge in its material frame (docs/internal-forces.md).
+    pub forces: Vec<EdgeForces>,
+    /// Largest utilization over the rod's edges, when its material has a yield strength.
+    pub utilization: Option<f64>,
+}
+
+/// The most utilized edge of the structure.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct Utilization {
+    /// Largest von Mises stress over yield strength.
+    pub max: f64,
+    pub rod: String,
+    /// Index of the edge in the rod (edge k joins nodes k and k + 1).
+    pub edge: usize,
 }
 
 /// Force and moment a support exerts on the structure.
@@ -70,6 +86,8 @@ pub struct Equilibrium {
     pub free_unknowns: usize,
     /// Unsupported structures: how their rigid translations were removed.
     pub gauge: Option<String>,
+    /// Rods whose material has a yield strength: the most utilized edge among them.
+    pub utilization: Option<Utilization>,
 }
 
 impl Equilibrium {
@@ -87,12 +105,14 @@ impl Equilibrium {
         });
         let energies = rod_energy::per_rod(net);
         let bending = stress::all_vertex_bending(net);
-        let rods = net
+        let forces = internal_forces::all_edge_forces(net);
+        let rods: Vec<RodEquilibrium> = net
             .rods
             .iter()
             .zip(energies)
             .zip(bending)
-            .map(|((r, energy), bending)| RodEquilibrium {
+            .zip(forces)
+            .map(|(((r, energy), bending), forces)| RodEquilibrium {
                 name: r.name.clone(),
                 points: r.nodes.iter().map(|&n| m.position(n)).collect(),
                 twist: r.edges.iter().map(|&e| q[m.layout.theta(e)]).collect(),
@@ -100,8 +120,19 @@ impl Equilibrium {
                 energy,
                 bending,
                 axial_force: r.edges.iter().map(|&e| axial_force(net, e)).collect(),
+                utilization: most_utilized(&forces).map(|(_, u)| u),
+                forces,
             })
             .collect();
+        let utilization = rods
+            .iter()
+            .filter_map(|r| most_utilized(&r.forces).map(|(edge, max)| (r, edge, max)))
+            .max_by(|a, b| a.2.total_cmp(&b.2))
+            .map(|(r, edge, max)| Utilization {
+                max,
+                rod: r.name.clone(),
+                edge,
+            });
         // The gradient at a fixed node (frame) is the whole reaction there, however many
         // supports hold it; how it divides among them is statically indeterminate. The first
         // support on a node carries its force, the first clamp on a frame its moment, and later
@@ -148,8 +179,21 @@ impl Equilibrium {
             reference: reference::check(net, scene),
             gauge: net.gauge.as_ref().map(|g| g.describe()),
             free_unknowns: m.n_free,
+            utilization,
         }
     }
+}
+
+/// The edge with the largest utilization and its value (the first of equal ones).
+fn most_utilized(forces: &[EdgeForces]) -> Option<(usize, f64)> {
+    forces
+        .iter()
+        .enumerate()
+        .filter_map(|(k, f)| f.utilization.map(|u| (k, u)))
+        .fold(None, |best, (k, u)| match best {
+            Some((_, b)) if b >= u => best,
+            _ => Some((k, u)),
+        })
 }
 
 fn edge_length(net: &Network, e: usize) -> f64 {

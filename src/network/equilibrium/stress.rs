@@ -6,7 +6,7 @@
 //! unstressed; only free ends are.
 
 use crate::energy::{frame_twist::FrameTwist, twist::Twist, Term};
-use crate::math::vec::{dot, norm, sub};
+use crate::math::vec::{cross, dot, norm, sub};
 use crate::network::info::RodInfo;
 use crate::network::Network;
 use crate::rod::section::Section;
@@ -122,8 +122,9 @@ fn bending_with(net: &Network, rod: &RodInfo, strain: Option<&[f64]>) -> Vec<Ver
                 let d = pos(rod.nodes[(j + 1) % np]);
                 let (e0, e1) = (sub(b, a), sub(d, b));
                 let (l0, l1) = (norm(e0), norm(e1));
-                let cosang = dot(e0, e1) / (l0 * l1);
-                let phi = cosang.clamp(-1.0, 1.0).acos();
+                // atan2 keeps small angles accurate; acos of the cosine lost them to
+                // round-off as ε/φ² (1e-7 relative at φ = 5e-5).
+                let phi = norm(cross(e0, e1)).atan2(dot(e0, e1));
                 2.0 * (0.5 * phi).sin() / (0.5 * (l0 + l1))
             } else {
                 0.0

@@ -256,6 +256,7 @@ fn material(o: &NetworkOptions) -> BTreeMap<String, Material> {
             shear_modulus: o.shear_modulus,
             density: o.density,
             section: Section::Circle { radius: o.radius },
+            yield_strength: None,
         },
     );
     materials

@@ -47,6 +47,14 @@ pub(super) fn materials(s: &Scene) -> Result<(), FieldError> {
                 format!("must be non-negative and finite, got {}", m.density),
             );
         }
+        if let Some(y) = m.yield_strength {
+            if !positive(y) {
+                return err(
+                    "yield_strength",
+                    format!("must be positive and finite (at most {MAX_MAGNITUDE:e}), got {y}"),
+                );
+            }
+        }
         let ok = match m.section {
             Section::Circle { radius } => positive(radius),
             Section::Ellipse { a, b } => positive(a) && positive(b),
