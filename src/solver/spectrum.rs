@@ -17,7 +17,7 @@ use super::Ordering;
 const MAX_ROUNDS: usize = 300;
 /// Convergence: each wanted Ritz value moved by less than this fraction of itself (or of the
 /// Hessian's scale, for values near zero).
-const RITZ_TOLERANCE: f64 = 1e-10;
+const RITZ_TOLERANCE: f64 = 1e-8;
 
 /// The lowest eigenpairs of H u = λ W u (W = diag(1/s²) of `unknown_scales`).
 pub struct Spectrum {
