@@ -3,6 +3,7 @@
 
 mod buckle;
 mod gridshell;
+mod limits;
 mod network;
 mod output;
 mod plot;
@@ -18,6 +19,7 @@ pub use buckle::BuckleArgs;
 pub use gridshell::{
     HemisphereArgs, PathArg, SectionRatio, DEFAULT_RODS, DEFAULT_SUBDIVIDE, MAX_RODS,
 };
+pub use limits::{parse_bytes, LimitArgs};
 pub use network::{JointArg, NetworkArgs};
 pub use output::{EXIT_BAD_INPUT, EXIT_NOT_CONVERGED, EXIT_OK};
 pub use plot::PlotArgs;
@@ -65,6 +67,8 @@ pub enum Command {
         quiet: bool,
         #[command(flatten)]
         network: NetworkArgs,
+        #[command(flatten)]
+        limits: LimitArgs,
     },
     /// Linear buckling: the factors by which the scene's loads (and prescribed motions) can be
     /// multiplied before the structure buckles, and their modes.
@@ -103,25 +107,38 @@ pub fn run(cli: Cli) -> i32 {
             modes_obj,
             quiet,
             network,
-        } => solve::run(
-            scene,
-            solve::Outputs {
-                json,
-                obj,
-                csv,
-                modes: modes.map(|k| k as usize),
-                modes_obj,
-            },
-            quiet,
-            &network,
-        ),
-        Command::Buckle(args) => buckle::run(&args),
+            limits,
+        } => {
+            limits.apply();
+            solve::run(
+                scene,
+                solve::Outputs {
+                    json,
+                    obj,
+                    csv,
+                    modes: modes.map(|k| k as usize),
+                    modes_obj,
+                },
+                quiet,
+                &network,
+            )
+        }
+        Command::Buckle(args) => {
+            args.limits.apply();
+            buckle::run(&args)
+        }
         Command::Gridshell {
             shape: GridshellCommand::Hemisphere(args),
-        } => gridshell::run(args),
+        } => {
+            args.limits.apply();
+            gridshell::run(args)
+        }
         Command::Plot(args) => plot::run(&args),
         Command::Study {
             study: StudyCommand::Convergence(args),
-        } => study::run(&args),
+        } => {
+            args.limits.apply();
+            study::run(&args)
+        }
     }
 }
