@@ -2,7 +2,10 @@
 //! Commands differ only in how they solve (plain Newton, or a gridshell's form finding) and in
 //! what they add to the measurements; both are passed in.
 
+use std::sync::atomic::{AtomicU64, Ordering};
+
 use crate::io::results::Results;
+use crate::network::budget;
 use crate::network::equilibrium::Equilibrium;
 use crate::network::{build, Network};
 use crate::scene::types::DEFAULT_TOLERANCE;
@@ -16,12 +19,61 @@ pub struct Solution {
     pub results: Results,
 }
 
+/// The memory a solve may take, bytes (`--max-memory`). A limit on the process, like a
+/// resource limit, so held once per process rather than passed through every command's job;
+/// the library has none unless a caller sets one.
+static MEMORY_LIMIT: AtomicU64 = AtomicU64::new(u64::MAX);
+
+/// Sets the memory limit every later [`run`] checks its scene against (`u64::MAX`: none).
+pub fn set_memory_limit(bytes: u64) {
+    MEMORY_LIMIT.store(bytes, Ordering::Relaxed);
+}
+
+/// The memory limit [`run`] checks against (`u64::MAX`: none).
+pub fn memory_limit() -> u64 {
+    MEMORY_LIMIT.load(Ordering::Relaxed)
+}
+
+/// `--time-limit`, seconds, as f64 bits (`u64::MAX`: none): overrides every scene's
+/// `solver.time_limit` in [`settings_of`].
+static TIME_LIMIT: AtomicU64 = AtomicU64::new(u64::MAX);
+
+/// Sets the time limit that overrides the scenes' own (`None`: theirs).
+pub fn set_time_limit(seconds: Option<f64>) {
+    TIME_LIMIT.store(seconds.map_or(u64::MAX, f64::to_bits), Ordering::Relaxed);
+}
+
+/// The time limit set by [`set_time_limit`], if any.
+pub fn time_limit() -> Option<f64> {
+    match TIME_LIMIT.load(Ordering::Relaxed) {
+        u64::MAX => None,
+        bits => Some(f64::from_bits(bits)),
+    }
+}
+
+/// Builds a validated scene, refused (as a [`FieldError`] on the field that drives its size)
+/// when the solve would need more than the memory limit: first from the scene's sizes, before
+/// anything is allocated, then from the built network with the factor's fill counted exactly.
+pub fn build_within_limit(
+    scene: &Scene,
+    ordering: crate::solver::Ordering,
+) -> Result<Network, FieldError> {
+    let limit = memory_limit();
+    if limit == u64::MAX {
+        return build(scene);
+    }
+    budget::check_scene(scene, limit)?;
+    let network = build(scene)?;
+    budget::check_network(scene, &network, limit, ordering)?;
+    Ok(network)
+}
+
 /// The solver settings a scene asks for.
 pub fn settings_of(scene: &Scene) -> NewtonSettings {
     NewtonSettings::default()
         .tolerance(scene.solver.tolerance.unwrap_or(DEFAULT_TOLERANCE))
         .automatic_tolerance(scene.solver.tolerance.is_none())
-        .time_limit(scene.solver.time_limit)
+        .time_limit(time_limit().or(scene.solver.time_limit))
         .continuation(match scene.solver.continuation {
             crate::scene::types::Continuation::Load => crate::solver::Continuation::Load,
             crate::scene::types::Continuation::ArcLength => crate::solver::Continuation::ArcLength,
@@ -48,7 +100,7 @@ pub fn run(
     solve: impl FnOnce(&mut Network, &NewtonSettings) -> NewtonReport,
     measure: impl FnOnce(&Network, &mut Equilibrium),
 ) -> Result<Solution, FieldError> {
-    let mut network = build(scene)?;
+    let mut network = build_within_limit(scene, settings.ordering)?;
     let report = solve(&mut network, settings);
     Ok(finish(network, scene, report, measure))
 }

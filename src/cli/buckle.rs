@@ -28,6 +28,8 @@ pub struct BuckleArgs {
     /// Print only the factors.
     #[arg(long)]
     pub quiet: bool,
+    #[command(flatten)]
+    pub limits: super::LimitArgs,
 }
 
 pub fn run(a: &BuckleArgs) -> i32 {
@@ -40,7 +42,8 @@ pub fn run(a: &BuckleArgs) -> i32 {
         Err(e) => return bad(e),
     };
     let label = a.scene.display().to_string();
-    let mut net = match crate::network::build(&sc) {
+    let ordering = crate::pipeline::settings_of(&sc).ordering;
+    let mut net = match crate::pipeline::build_within_limit(&sc, ordering) {
         Ok(n) => n,
         Err(e) => return bad(SceneError::from_field(&label, &src, &e)),
     };

@@ -29,6 +29,11 @@ pub const DEFAULT_RODS: usize = 12;
 pub const DEFAULT_SUBDIVIDE: usize = 4;
 /// Largest n accepted (the net generator is tested up to 200).
 pub const MAX_RODS: usize = 200;
+/// Range of --radius, m.
+pub const MIN_RADIUS: f64 = 1e-6;
+pub const MAX_RADIUS: f64 = 1e6;
+/// Largest --section dimension, in units of R.
+pub const MAX_SECTION_RATIO: f64 = 1.0;
 
 #[derive(Args, Debug)]
 pub struct HemisphereArgs {
@@ -95,6 +100,8 @@ pub struct HemisphereArgs {
     /// No progress output.
     #[arg(long)]
     pub quiet: bool,
+    #[command(flatten)]
+    pub limits: super::LimitArgs,
 }
 
 /// A cross-section with its dimensions in units of the sphere radius.
@@ -102,6 +109,14 @@ pub struct HemisphereArgs {
 pub struct SectionRatio(pub Section);
 
 impl SectionRatio {
+    fn dims(self) -> Vec<f64> {
+        match self.0 {
+            Section::Circle { radius } => vec![radius],
+            Section::Ellipse { a, b } => vec![a, b],
+            Section::Rectangle { width, height } => vec![width, height],
+        }
+    }
+
     fn scaled(self, r: f64) -> Section {
         match self.0 {
             Section::Circle { radius } => Section::Circle { radius: radius * r },
@@ -144,9 +159,12 @@ fn parse_section(s: &str) -> Result<SectionRatio, String> {
 /// Checks the numbers clap cannot check by type.
 pub(super) fn hemisphere_spec(a: &HemisphereArgs) -> Result<HemisphereSpec, String> {
     let positive = |x: f64| x.is_finite() && x > 0.0;
-    if !positive(a.radius) {
+    // Every length of the footprint is R times a ratio of order one; outside this range its
+    // squares and the section's rigidities (r⁴ E) leave the doubles, and the net's sizes with
+    // them (a non-finite length once asked for endless subdivisions).
+    if !(MIN_RADIUS..=MAX_RADIUS).contains(&a.radius) {
         return Err(format!(
-            "--radius must be positive and finite, got {}",
+            "--radius must lie in [{MIN_RADIUS:e}, {MAX_RADIUS:e}] m, got {:e}",
             a.radius
         ));
     }
@@ -156,9 +174,34 @@ pub(super) fn hemisphere_spec(a: &HemisphereArgs) -> Result<HemisphereSpec, Stri
     if a.subdivide == 0 {
         return Err("--subdivide must be at least 1".into());
     }
-    if !positive(a.young_modulus) {
+    // The footprint has 1.3–1.5 n² K nodes (every rod crosses up to n others): checked
+    // before it is generated, so that no request runs away in the generator.
+    let nodes = (3 * a.rods * a.rods / 2).saturating_mul(a.subdivide);
+    if nodes > scene::validate::MAX_NODES {
         return Err(format!(
-            "--young-modulus must be positive and finite, got {}",
+            "--rods {} --subdivide {} would give about {} nodes (1.5 n² K), above the limit \
+             of {}; reduce --subdivide",
+            a.rods,
+            a.subdivide,
+            nodes,
+            scene::validate::MAX_NODES
+        ));
+    }
+    if let Some(d) = a
+        .section
+        .dims()
+        .into_iter()
+        .find(|&d| d > MAX_SECTION_RATIO)
+    {
+        return Err(format!(
+            "--section dimensions are in units of R and must be at most {MAX_SECTION_RATIO} \
+             (a rod as thick as the sphere), got {d:e}"
+        ));
+    }
+    if !(positive(a.young_modulus) && a.young_modulus <= scene::validate::MAX_MAGNITUDE) {
+        return Err(format!(
+            "--young-modulus must be positive and finite (at most {:e} Pa), got {}",
+            scene::validate::MAX_MAGNITUDE,
             a.young_modulus
         ));
     }
@@ -255,7 +298,17 @@ fn outputs(a: &HemisphereArgs) -> Result<Outputs, String> {
     Ok(out)
 }
 
-fn invalid(e: &FieldError) -> String {
+fn invalid(spec: &HemisphereSpec, e: &FieldError) -> String {
+    if let Some(rest) = e.message.strip_prefix(crate::network::budget::REFUSAL) {
+        // The generated scene's sizes come from the options, not from a rod the user wrote.
+        return format!(
+            "--rods {} --subdivide {}: the gridshell is too large for the memory limit{} \
+             (reduce --rods or --subdivide, or raise --max-memory)",
+            spec.rods,
+            spec.subdivide,
+            rest.split(" (this rod has").next().unwrap_or(rest)
+        );
+    }
     format!(
         "the generated scene is invalid: {}: {}",
         e.path(),
@@ -296,7 +349,7 @@ pub(super) fn run(a: HemisphereArgs) -> i32 {
     }
     let fp = footprint::footprint(&spec);
     if let Err(e) = scene::validate::validate(&fp.scene) {
-        return bad(invalid(&e));
+        return bad(invalid(&spec, &e));
     }
     if let Some(d) = creating {
         if let Err(e) = std::fs::create_dir_all(d) {
@@ -317,7 +370,7 @@ pub(super) fn run(a: HemisphereArgs) -> i32 {
     tracker.finish();
     let mut run = match result {
         Ok(r) => r,
-        Err(e) => return bad(invalid(&e)),
+        Err(e) => return bad(invalid(&spec, &e)),
     };
     if let (Some(k), true) = (a.modes, run.results.all_finite()) {
         match crate::network::stability::analyse(&mut run.network, k as usize) {

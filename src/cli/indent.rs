@@ -42,6 +42,8 @@ pub struct IndentArgs {
     /// Only the summary line.
     #[arg(long)]
     pub quiet: bool,
+    #[command(flatten)]
+    pub limits: super::LimitArgs,
 }
 
 pub fn run(a: &IndentArgs) -> i32 {

@@ -4,6 +4,7 @@
 mod buckle;
 mod gridshell;
 mod indent;
+mod limits;
 mod network;
 mod output;
 mod plot;
@@ -20,6 +21,7 @@ pub use gridshell::{
     HemisphereArgs, PathArg, SectionRatio, DEFAULT_RODS, DEFAULT_SUBDIVIDE, MAX_RODS,
 };
 pub use indent::IndentArgs;
+pub use limits::{parse_bytes, LimitArgs};
 pub use network::{JointArg, NetworkArgs};
 pub use output::{EXIT_BAD_INPUT, EXIT_NOT_CONVERGED, EXIT_OK};
 pub use plot::PlotArgs;
@@ -71,6 +73,8 @@ pub enum Command {
         quiet: bool,
         #[command(flatten)]
         network: NetworkArgs,
+        #[command(flatten)]
+        limits: LimitArgs,
     },
     /// Linear buckling: the factors by which the scene's loads (and prescribed motions) can be
     /// multiplied before the structure buckles, and their modes.
@@ -113,27 +117,43 @@ pub fn run(cli: Cli) -> i32 {
             modes_obj,
             quiet,
             network,
-        } => solve::run(
-            scene,
-            solve::Outputs {
-                json,
-                obj,
-                csv,
-                forces_csv,
-                modes: modes.map(|k| k as usize),
-                modes_obj,
-            },
-            quiet,
-            &network,
-        ),
-        Command::Buckle(args) => buckle::run(&args),
-        Command::Indent(args) => indent::run(&args),
+            limits,
+        } => {
+            limits.apply();
+            solve::run(
+                scene,
+                solve::Outputs {
+                    json,
+                    obj,
+                    csv,
+                    forces_csv,
+                    modes: modes.map(|k| k as usize),
+                    modes_obj,
+                },
+                quiet,
+                &network,
+            )
+        }
+        Command::Buckle(args) => {
+            args.limits.apply();
+            buckle::run(&args)
+        }
+        Command::Indent(args) => {
+            args.limits.apply();
+            indent::run(&args)
+        }
         Command::Gridshell {
             shape: GridshellCommand::Hemisphere(args),
-        } => gridshell::run(args),
+        } => {
+            args.limits.apply();
+            gridshell::run(args)
+        }
         Command::Plot(args) => plot::run(&args),
         Command::Study {
             study: StudyCommand::Convergence(args),
-        } => study::run(&args),
+        } => {
+            args.limits.apply();
+            study::run(&args)
+        }
     }
 }

@@ -55,6 +55,8 @@ pub struct ConvergenceArgs {
     /// No progress output.
     #[arg(long)]
     pub quiet: bool,
+    #[command(flatten)]
+    pub limits: super::LimitArgs,
     /// Gridshell: rods per family n [default: 12].
     #[arg(long, conflicts_with = "scene", requires = "gridshell")]
     pub rods: Option<usize>,
@@ -93,6 +95,7 @@ fn hemisphere_problem(a: &ConvergenceArgs) -> Result<Problem, String> {
         out_dir: None,
         modes: None,
         quiet: a.quiet,
+        limits: a.limits.clone(),
     };
     let spec = hemisphere_spec(&h)?;
     Ok(Problem::Hemisphere {

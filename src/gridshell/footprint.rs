@@ -13,6 +13,7 @@ use crate::gridshell::chebyshev::{mirror_uv, HemisphereNet};
 use crate::scene::types::{
     Joint, JointKind, Material, Rod, Scene, Section, Solver, Support, SupportKind, Target,
 };
+use crate::scene::validate::MAX_NODES;
 
 /// Joint kinds the generator offers (Elastic joints are not in the solver yet).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -263,7 +264,15 @@ fn subdivided(keys: &[[f64; 3]], per_spacing: usize, spacing: f64) -> (Vec<[f64;
         // The relative slack keeps a spacing computed with round-off at `per_spacing` edges.
         let edges = ((per_spacing as f64 * length / spacing) * (1.0 - 1e-9))
             .ceil()
-            .max(1.0) as usize;
+            .max(1.0);
+        // The options are checked so that this stays small. Were it beyond the node limit
+        // (or not finite: the points are then not finite either), the scene's validation
+        // refuses the rod rather than this loop running away.
+        let edges = if edges.is_finite() {
+            edges.min((MAX_NODES + 1) as f64) as usize
+        } else {
+            1
+        };
         at.push(points.len());
         points.push(a);
         for k in 1..edges {

@@ -31,7 +31,7 @@
 //! (docs/gridshell.md compares cap radii and paths). `start_cap = 1` starts directly from the
 //! analytic net of the hemisphere.
 
-use std::time::Instant;
+use std::time::{Duration, Instant};
 
 use crate::gridshell::chebyshev::HemisphereNet;
 use crate::math::vec::{add, cross, dot, norm, normalize, scalef, sub};
@@ -132,6 +132,9 @@ fn cap_path(
     // The last equilibrium's path parameter, net positions and normals.
     let mut done: Option<(f64, CapNodes, CapNodes)> = None;
     let mut halvings = 0;
+    let deadline = settings
+        .time_limit
+        .map(|t| Instant::now() + Duration::from_secs_f64(t.clamp(0.0, 1e9)));
     // After a failure, steps continue from the last equilibrium instead of restarting from a
     // net, so that halving them brings Newton's start closer.
     let mut carry = false;
@@ -180,9 +183,20 @@ fn cap_path(
         };
         // An intermediate state stalled at the round-off floor starts the next step well enough.
         let automatic = settings.automatic_tolerance || !last;
-        let step_settings = settings.clone().load_steps(1).tolerance(tolerance);
+        // The time limit holds for the whole form finding, not for each cap step.
+        let left = deadline.map(|d| d.saturating_duration_since(Instant::now()).as_secs_f64());
+        let step_settings = settings
+            .clone()
+            .load_steps(1)
+            .tolerance(tolerance)
+            .time_limit(left);
         let r = problem.solve(&step_settings.automatic_tolerance(automatic));
         merge(&mut total, &r);
+        if r.stopped.is_some() {
+            total.message.clone_from(&r.message);
+            total.converged = false;
+            break;
+        }
         if r.converged {
             pending.pop();
             done = Some((s_next, pos, normals));

@@ -4,6 +4,7 @@
 
 pub mod assembly;
 pub mod buckle;
+pub mod budget;
 pub mod build;
 pub mod contact;
 pub mod equilibrium;

@@ -164,9 +164,14 @@ pub fn load(path: &Path) -> Result<(Scene, String), SceneError> {
     Ok((parse(&file, &src)?, src))
 }
 
-/// Reads a text input file (`what` names it in errors), refusing files above `max_bytes`
-/// before reading them and locating the first byte that is not UTF-8.
+/// Reads a text input file (`what` names it in errors) through a cap of `max_bytes`, whatever
+/// the file is: a regular file is refused from its size before reading, and every read stops
+/// after `max_bytes + 1` bytes (a file that grows, a pipe that never ends). Devices are refused
+/// (/dev/zero never ends, a terminal waits for typing); a FIFO is opened without waiting for a
+/// writer and read to its end, so that one nobody writes to reads as empty instead of blocking.
+/// Locates the first byte that is not UTF-8.
 pub fn read_text(path: &Path, what: &str, max_bytes: u64) -> Result<String, SceneError> {
+    use std::io::Read;
     let file = path.display().to_string();
     let fail = |line, column, message| SceneError {
         file: file.clone(),
@@ -183,18 +188,47 @@ pub fn read_text(path: &Path, what: &str, max_bytes: u64) -> Result<String, Scen
             format!("cannot read {what} file: it is a directory"),
         ));
     }
-    if meta.len() > max_bytes {
+    let too_large = |size: String| {
+        fail(
+            None,
+            None,
+            format!(
+                "{what} file is {size} bytes, above the limit of {max_bytes} bytes (see docs/cli.md)"
+            ),
+        )
+    };
+    if meta.is_file() && meta.len() > max_bytes {
+        return Err(too_large(meta.len().to_string()));
+    }
+    let fifo = input_kind(&meta).map_err(|kind| {
+        fail(
+            None,
+            None,
+            format!(
+                "cannot read {what} file: it is {kind}, not a regular file or a pipe \
+                 (save the input to a file first)"
+            ),
+        )
+    })?;
+    let f = open_input(path, fifo)
+        .map_err(|e| fail(None, None, format!("cannot read {what} file: {e}")))?;
+    let mut bytes = Vec::with_capacity(meta.len().min(max_bytes) as usize);
+    f.take(max_bytes.saturating_add(1))
+        .read_to_end(&mut bytes)
+        .map_err(|e| fail(None, None, format!("cannot read {what} file: {e}")))?;
+    if bytes.len() as u64 > max_bytes {
+        return Err(too_large(format!("more than {max_bytes}")));
+    }
+    if fifo && bytes.is_empty() {
         return Err(fail(
             None,
             None,
             format!(
-                "{what} file is {} bytes, above the limit of {max_bytes} bytes (see docs/scene-format.md)",
-                meta.len()
+                "{what} file is a FIFO with nothing written to it (rodnet does not wait for a \
+                 writer: start the writer first, or save the input to a file)"
             ),
         ));
     }
-    let bytes = std::fs::read(path)
-        .map_err(|e| fail(None, None, format!("cannot read {what} file: {e}")))?;
     String::from_utf8(bytes).map_err(|e| {
         let good = &e.as_bytes()[..e.utf8_error().valid_up_to()];
         let line = 1 + good.iter().filter(|&&b| b == b'\n').count();
@@ -206,4 +240,53 @@ pub fn read_text(path: &Path, what: &str, max_bytes: u64) -> Result<String, Scen
             format!("{what} file is not valid UTF-8 text"),
         )
     })
+}
+
+/// Whether an input is a FIFO (`Ok(true)`), another readable kind (`Ok(false)`), or a kind that
+/// is refused (`Err` with its name): character and block devices.
+fn input_kind(meta: &std::fs::Metadata) -> Result<bool, &'static str> {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::FileTypeExt;
+        let t = meta.file_type();
+        if t.is_char_device() {
+            return Err("a character device");
+        }
+        if t.is_block_device() {
+            return Err("a block device");
+        }
+        Ok(t.is_fifo())
+    }
+    #[cfg(not(unix))]
+    {
+        let _ = meta;
+        Ok(false)
+    }
+}
+
+/// Opens an input for reading. A FIFO is opened non-blocking (an open for reading otherwise
+/// waits for a writer, forever if none comes), then made blocking again so that its data is
+/// read to the end the writer gives it: a FIFO without a writer then reads as empty.
+fn open_input(path: &Path, fifo: bool) -> std::io::Result<std::fs::File> {
+    #[cfg(unix)]
+    if fifo {
+        use std::os::unix::fs::OpenOptionsExt;
+        use std::os::unix::io::AsRawFd;
+        let f = std::fs::OpenOptions::new()
+            .read(true)
+            .custom_flags(libc::O_NONBLOCK)
+            .open(path)?;
+        let fd = f.as_raw_fd();
+        // SAFETY: fcntl on a file descriptor this function owns, with no pointer arguments.
+        let ok = unsafe {
+            let flags = libc::fcntl(fd, libc::F_GETFL);
+            flags >= 0 && libc::fcntl(fd, libc::F_SETFL, flags & !libc::O_NONBLOCK) >= 0
+        };
+        if !ok {
+            return Err(std::io::Error::last_os_error());
+        }
+        return Ok(f);
+    }
+    let _ = fifo;
+    std::fs::File::open(path)
 }

@@ -1,5 +1,6 @@
 //! Newton's method on the total energy, its linear algebra, and its settings.
 pub mod arc_length;
+pub mod budget;
 pub mod continuation;
 pub mod linalg;
 pub mod line_search;

@@ -13,10 +13,10 @@ use std::time::Instant;
 use crate::gridshell::footprint::{footprint, HemisphereSpec};
 use crate::gridshell::job as gridshell_job;
 use crate::math::vec::{norm, sub};
-use crate::network::{build, Network};
+use crate::network::Network;
 use crate::pipeline::{self, settings_of};
 use crate::scene::{validate, FieldError, Scene, SceneError};
-use crate::solver::Progress;
+use crate::solver::{Ordering, Progress};
 use crate::study::richardson::{self, Extrapolation};
 
 /// Largest number of levels (the node limit stops most scenes well before).
@@ -159,8 +159,10 @@ pub fn plan(problem: &Problem, levels: usize) -> Result<Plan, String> {
             // The builder checks what depends on the nodes (joint positions, hinge axes, rest
             // shape outside the obstacles), and finer levels have new nodes. It allocates, so it
             // runs once every level has passed the cheap checks (the node limit).
+            // Each level is also checked against the memory limit here, so that no solve is
+            // refused once the study has begun.
             for (i, s) in scenes.iter().enumerate() {
-                build(s).map_err(|e| describe(i + 1, &e))?;
+                pipeline::build_within_limit(s, Ordering::Auto).map_err(|e| describe(i + 1, &e))?;
             }
             let (mut probes, mut rest) = (Vec::new(), Vec::new());
             for r in &scene.rods {
@@ -202,7 +204,7 @@ pub fn plan(problem: &Problem, levels: usize) -> Result<Plan, String> {
                     .ok_or_else(|| format!("--subdivide overflows at {}", at(level)))?;
                 let fp = footprint(&s);
                 validate::validate(&fp.scene)
-                    .and_then(|_| build(&fp.scene).map(drop))
+                    .and_then(|_| pipeline::build_within_limit(&fp.scene, Ordering::Auto).map(drop))
                     .map_err(|e| {
                         format!(
                             "the generated scene is invalid at {}: {}: {}",

@@ -1,0 +1,227 @@
+//! The memory and work a scene will take, estimated before the solve allocates it, so that a
+//! small input asking for more than the machine has is refused with a located message instead
+//! of aborting in the allocator (docs/performance.md, "Memory", compares these estimates with
+//! measured peaks).
+//!
+//! Two stages: [`lower_bound`] from the scene's sizes alone, before anything is built (the
+//! model and the Hessian's pattern grow with the nodes whatever the ordering does), and
+//! [`estimate`] from the built network, with the factor's non-zeros counted exactly by the
+//! symbolic analysis the solver will run.
+
+use super::model::Model;
+use super::Network;
+use crate::energy::registry::TermVisitor;
+use crate::energy::Term;
+use crate::scene::types::Scene;
+use crate::scene::FieldError;
+use crate::solver::budget::{factor_cost, FactorCost};
+use crate::solver::Ordering;
+
+/// Resident bytes of the process before the scene: binary, allocator, thread pool.
+const BASE_BYTES: u64 = 8 << 20;
+/// Bytes per node that solving a network takes at least: measured 9–11 KB per node on
+/// chains, the cheapest networks (docs/performance.md); [`lower_bound`] takes half of it.
+const MIN_BYTES_PER_NODE: u64 = 8_000;
+/// Vectors of the unknowns' length the Newton iteration, its line search and the results keep
+/// (gradients, steps, scales, weights, snapshots).
+const VECTORS_PER_UNKNOWN: u64 = 24;
+/// Bytes per node of the equilibrium and results (positions, forces, stresses, JSON text).
+const RESULT_BYTES_PER_NODE: u64 = 600;
+
+/// How a refusal's message begins (commands that generate their scene rephrase it).
+pub const REFUSAL: &str = "the scene is too large for the memory limit";
+
+/// What solving a network will take.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct Estimate {
+    pub nodes: usize,
+    pub factor: FactorCost,
+    /// Energy terms, state and layout.
+    pub model_bytes: u64,
+    /// Estimated peak resident bytes of the whole solve.
+    pub bytes: u64,
+}
+
+impl Estimate {
+    /// Bytes the solve allocates: the resident peak and the factor allocated but never
+    /// written ([`FactorCost::reserved`]). What the limit is checked against, since an
+    /// allocation the machine cannot give aborts the process even if it would stay untouched.
+    pub fn allocated(&self) -> u64 {
+        self.bytes.saturating_add(self.factor.reserved)
+    }
+}
+
+impl Estimate {
+    /// One line for messages: sizes, the factor's fill and the peak.
+    pub fn describe(&self) -> String {
+        let f = &self.factor;
+        format!(
+            "{} nodes, {} unknowns, {} Hessian non-zeros, {} non-zeros in the Cholesky factor \
+             ({}, {:.1e} flops per factorization): about {} resident{}",
+            self.nodes,
+            f.unknowns,
+            f.hessian_nnz,
+            f.factor_nnz,
+            match f.ordering {
+                Ordering::NestedDissection => "nested dissection",
+                _ => "AMD",
+            },
+            f.flops,
+            bytes_text(self.bytes),
+            if f.reserved > 0 {
+                format!(
+                    ", {} allocated (the other ordering's factor, {} non-zeros, is allocated \
+                     while the two are compared)",
+                    bytes_text(self.allocated()),
+                    f.other_factor_nnz
+                )
+            } else {
+                String::new()
+            }
+        )
+    }
+}
+
+/// Bytes in binary units for messages ("1.5 GiB").
+pub fn bytes_text(b: u64) -> String {
+    const UNITS: [&str; 5] = ["B", "KiB", "MiB", "GiB", "TiB"];
+    let mut v = b as f64;
+    let mut u = 0;
+    while v >= 1024.0 && u + 1 < UNITS.len() {
+        v /= 1024.0;
+        u += 1;
+    }
+    if u == 0 {
+        format!("{b} B")
+    } else {
+        format!("{v:.1} {}", UNITS[u])
+    }
+}
+
+/// Nodes of a validated scene (each rod's segments times `subdivide`, plus its end node).
+pub fn scene_nodes(scene: &Scene) -> usize {
+    scene
+        .rods
+        .iter()
+        .map(|r| {
+            let segments = r.points.len().saturating_sub(usize::from(!r.closed));
+            segments
+                .saturating_mul(r.subdivide)
+                .saturating_add(usize::from(!r.closed))
+        })
+        .fold(0, usize::saturating_add)
+}
+
+/// Bytes that solving the scene takes at least, from its nodes alone.
+pub fn lower_bound(scene: &Scene) -> u64 {
+    BASE_BYTES + (scene_nodes(scene) as u64).saturating_mul(MIN_BYTES_PER_NODE / 2)
+}
+
+/// Heap bytes of the model's terms and of the Hessian slot map the solve builds from them.
+fn term_bytes(m: &Model) -> (u64, u64) {
+    struct Sizes(u64, u64);
+    impl TermVisitor for Sizes {
+        fn visit<const N: usize, E: Term<N>>(&mut self, _: usize, terms: &[E]) {
+            self.0 += std::mem::size_of_val(terms) as u64;
+            self.1 += (4 * terms.len() * N * (N + 1) / 2) as u64;
+        }
+    }
+    let mut s = Sizes(0, 0);
+    m.terms.visit(&mut s);
+    (s.0, s.1)
+}
+
+/// The estimate for solving `net` with `ordering` (symbolic analyses included: linear in the
+/// network's size, and what the solver runs first anyway).
+pub fn estimate(net: &Network, ordering: Ordering) -> Estimate {
+    let m = &net.model;
+    let pairs = m.hessian_pattern();
+    let positions = m.unknown_positions();
+    let factor = factor_cost(m.n_free, &pairs, Some(&positions), ordering);
+    drop(pairs);
+    let (terms, slots) = term_bytes(m);
+    let vars = m.state.q.len() as u64;
+    let nodes = net.n_nodes();
+    let model_bytes = terms + 8 * vars * 8;
+    let n = factor.unknowns as u64;
+    // While the solve runs: the model, the pattern's pairs (kept for the solve), the slot map,
+    // the factorization objects, and the Newton vectors; then the results.
+    let bytes = BASE_BYTES
+        .saturating_add(model_bytes)
+        .saturating_add(16 * factor.pairs as u64 + slots)
+        .saturating_add(factor.bytes)
+        .saturating_add(8 * VECTORS_PER_UNKNOWN * n)
+        .saturating_add(RESULT_BYTES_PER_NODE * nodes as u64);
+    Estimate {
+        nodes,
+        factor,
+        model_bytes,
+        bytes,
+    }
+}
+
+/// The field that drives a scene's size, to name in a refusal: the `subdivide` of the rod with
+/// the most nodes (or its `points` where it is not subdivided).
+pub fn driving_field(scene: &Scene) -> (usize, &'static str) {
+    let (i, r) = scene
+        .rods
+        .iter()
+        .enumerate()
+        .max_by_key(|(_, r)| r.points.len().saturating_mul(r.subdivide))
+        .expect("a validated scene has rods");
+    (
+        i,
+        if r.subdivide > 1 {
+            "subdivide"
+        } else {
+            "points"
+        },
+    )
+}
+
+/// The refusal of a scene whose estimate (or lower bound) is above `limit` bytes.
+pub fn refusal(scene: &Scene, what: &str, limit: u64) -> FieldError {
+    let (i, field) = driving_field(scene);
+    FieldError::new(
+        "rods",
+        i,
+        field,
+        format!(
+            "{REFUSAL}: {what}, above --max-memory {} \
+             (this rod has the most nodes; reduce its `{field}`, or raise --max-memory)",
+            bytes_text(limit)
+        ),
+    )
+}
+
+/// Checks a scene against `limit` bytes before building it (from its sizes).
+pub fn check_scene(scene: &Scene, limit: u64) -> Result<(), FieldError> {
+    let low = lower_bound(scene);
+    if low > limit {
+        let what = format!(
+            "{} nodes need at least {}",
+            scene_nodes(scene),
+            bytes_text(low)
+        );
+        return Err(refusal(scene, &what, limit));
+    }
+    Ok(())
+}
+
+/// Checks a built network against `limit` bytes before solving it.
+pub fn check_network(
+    scene: &Scene,
+    net: &Network,
+    limit: u64,
+    ordering: Ordering,
+) -> Result<Estimate, FieldError> {
+    let e = estimate(net, ordering);
+    // How docs/performance.md compares the estimate with measured peaks.
+    if std::env::var_os("RODNET_ESTIMATE").is_some() {
+        eprintln!("estimate: {}", e.describe());
+    }
+    if e.allocated() > limit {
+        return Err(refusal(scene, &e.describe(), limit));
+    }
+    Ok(e)
+}

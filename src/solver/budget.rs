@@ -1,0 +1,252 @@
+//! What the sparse Cholesky factorization of a pattern will cost, known before any numeric
+//! array is allocated: faer's symbolic analysis is cheap (linear in the pattern, plus the
+//! ordering) and gives the factor's non-zeros exactly, so a scene too large for the machine can
+//! be refused instead of aborting in the allocator (docs/performance.md, "Memory").
+
+use faer::perm::PermRef;
+use faer::sparse::linalg::cholesky::{
+    factorize_symbolic_cholesky, CholeskySymbolicParams, SymbolicCholesky, SymbolicCholeskyRaw,
+    SymmetricOrdering,
+};
+use faer::sparse::SymbolicSparseColMat;
+use faer::{Par, Side};
+
+use super::ordering::{nested_dissection, Ordering, AUTO_FILL_RATIO, AUTO_MIN_UNKNOWNS};
+
+/// The cost of factoring one Hessian pattern the way [`super::solve`] will.
+#[derive(Debug, Clone, Copy, PartialEq)]
+pub struct FactorCost {
+    /// Unknowns (the matrix dimension).
+    pub unknowns: usize,
+    /// Pairs the problem lists (duplicates included), each held while the pattern is built.
+    pub pairs: usize,
+    /// Distinct non-zeros of the stored upper triangle.
+    pub hessian_nnz: usize,
+    /// Non-zeros of the factor under the ordering the solver will choose.
+    pub factor_nnz: usize,
+    /// Floating-point operations of one numeric factorization, Σ (column count)².
+    pub flops: f64,
+    /// Peak resident bytes of the factorization objects: the pattern arrays, the factor kept,
+    /// its structure and scratch, and the structure of the factor compared with it.
+    pub bytes: u64,
+    /// Bytes allocated but never written: where `Auto` analyses both orderings, both factors
+    /// are allocated at once, and the one not kept is dropped untouched. The allocation must
+    /// still succeed, so a factor larger than the machine aborts the process all the same.
+    pub reserved: u64,
+    /// Non-zeros of that factor not kept (0 where only one ordering is analysed).
+    pub other_factor_nnz: usize,
+    /// The ordering chosen.
+    pub ordering: Ordering,
+}
+
+/// One symbolic analysis and what its numeric objects will take.
+struct Analysis {
+    factor_nnz: usize,
+    flops: f64,
+    /// The factor's values.
+    values: u64,
+    /// Its symbolic structure and the pattern's arrays.
+    structure: u64,
+    /// Numeric factorization and solve scratch.
+    scratch: u64,
+}
+
+/// The cost of factoring the pattern `pairs` (upper-triangle pairs, as
+/// [`super::NewtonProblem::hessian_pattern`] lists them) of an `n`-unknown problem with
+/// `ordering`, unknowns placed at `positions` (for the nested dissection; `None`: AMD only,
+/// as the solver does when the problem gives no positions).
+pub fn factor_cost(
+    n: usize,
+    pairs: &[(usize, usize)],
+    positions: Option<&[[f64; 3]]>,
+    ordering: Ordering,
+) -> FactorCost {
+    let mut upper: Vec<(usize, usize)> = pairs.iter().map(|&(r, c)| (c, r)).collect();
+    upper.sort_unstable();
+    upper.dedup();
+    let nnz = upper.len();
+    let mut col_ptr = vec![0usize; n + 1];
+    for &(c, _) in &upper {
+        col_ptr[c + 1] += 1;
+    }
+    for c in 0..n {
+        col_ptr[c + 1] += col_ptr[c];
+    }
+    let row_idx: Vec<usize> = upper.iter().map(|&(_, r)| r).collect();
+    drop(upper);
+    // The same pattern arrays as `SparseCholesky::with_order`: the pairs' sort order and slots,
+    // row indices, values and shifted values, column pointers and diagonal positions.
+    let pattern_bytes = 8 * (2 * pairs.len() + 3 * nnz + 3 * n) as u64;
+    let pattern = SymbolicSparseColMat::new_checked(n, n, col_ptr, None, row_idx);
+    let analyse = |elimination: Option<&[usize]>| -> Option<Analysis> {
+        let inverse: Vec<usize> = elimination.map_or_else(Vec::new, |fwd| {
+            let mut inv = vec![0; n];
+            for (k, &i) in fwd.iter().enumerate() {
+                inv[i] = k;
+            }
+            inv
+        });
+        let ord = match elimination {
+            Some(fwd) => SymmetricOrdering::Custom(PermRef::new_checked(fwd, &inverse, n)),
+            None => SymmetricOrdering::Amd,
+        };
+        let sym = factorize_symbolic_cholesky(
+            pattern.as_ref(),
+            Side::Upper,
+            ord,
+            CholeskySymbolicParams::default(),
+        )
+        .ok()?;
+        Some(analysis(&sym))
+    };
+    // The solver's choice (`ordering::factorization`): AMD below the size where the dissection
+    // is tried, else both, the dissection kept only if it saves enough fill.
+    let try_nd = match ordering {
+        Ordering::Amd => false,
+        Ordering::NestedDissection => true,
+        Ordering::Auto => n >= AUTO_MIN_UNKNOWNS,
+    };
+    let nd = match positions {
+        Some(pts) if try_nd => {
+            let order = nested_dissection(n, pairs, pts);
+            analyse(Some(&order))
+        }
+        _ => None,
+    };
+    let amd = match (&nd, ordering) {
+        (Some(_), Ordering::NestedDissection) => None,
+        _ => analyse(None),
+    };
+    let (chosen, other, ordering) = match (nd, amd) {
+        (Some(nd), Some(amd)) => {
+            if (nd.factor_nnz as f64) < AUTO_FILL_RATIO * amd.factor_nnz as f64 {
+                (nd, Some(amd), Ordering::NestedDissection)
+            } else {
+                (amd, Some(nd), Ordering::Amd)
+            }
+        }
+        (Some(nd), None) => (nd, None, Ordering::NestedDissection),
+        (None, Some(amd)) => (amd, None, Ordering::Amd),
+        // The symbolic analysis failed (index overflow): nothing this large can be factored.
+        (None, None) => (
+            Analysis {
+                factor_nnz: usize::MAX,
+                flops: f64::INFINITY,
+                values: u64::MAX,
+                structure: u64::MAX,
+                scratch: u64::MAX,
+            },
+            None,
+            ordering,
+        ),
+    };
+    // The factor the solver does not keep is allocated, zeroed, while both are compared, but
+    // its values are never written: the allocator reserves them (as untouched zero pages)
+    // without making them resident. Its structure is written, and is resident.
+    let resident = [
+        pattern_bytes,
+        chosen.values,
+        chosen.structure,
+        chosen.scratch,
+        other.as_ref().map_or(0, |o| o.structure),
+    ]
+    .iter()
+    .fold(0u64, |a, &b| a.saturating_add(b));
+    let reserved = other
+        .as_ref()
+        .map_or(0, |o| o.values.saturating_add(o.scratch));
+    let other_factor_nnz = other.map_or(0, |o| o.factor_nnz);
+    FactorCost {
+        unknowns: n,
+        pairs: pairs.len(),
+        hessian_nnz: nnz,
+        factor_nnz: chosen.factor_nnz,
+        flops: chosen.flops,
+        bytes: resident,
+        reserved,
+        other_factor_nnz,
+        ordering,
+    }
+}
+
+/// Non-zeros, work and bytes of the numeric objects of one symbolic analysis: the factor's
+/// values, its symbolic structure, and the numeric and solve scratch.
+fn analysis(sym: &SymbolicCholesky<usize>) -> Analysis {
+    let n = sym.nrows();
+    let (flops, structure) = match sym.raw() {
+        SymbolicCholeskyRaw::Simplicial(s) => {
+            let cp = s.col_ptr();
+            let flops = cp.windows(2).map(|w| ((w[1] - w[0]) as f64).powi(2)).sum();
+            (flops, 8 * s.row_idx().len())
+        }
+        SymbolicCholeskyRaw::Supernodal(s) => {
+            let (begin, end) = (s.supernode_begin(), s.supernode_end());
+            let rows = s.col_ptr_for_row_idx();
+            let mut flops = 0.0;
+            for k in 0..s.n_supernodes() {
+                let cols = (end[k] - begin[k]) as f64;
+                let below = (rows[k + 1] - rows[k]) as f64;
+                // Column j of the supernode has (cols − j) + below entries.
+                flops += (1..=cols as usize)
+                    .map(|j| (j as f64 + below).powi(2))
+                    .sum::<f64>();
+            }
+            // Row indices, and faer's row-major copy of them.
+            (flops, 16 * s.row_idx().len())
+        }
+    };
+    let scratch = sym
+        .factorize_numeric_llt_scratch::<f64>(Par::Seq, Default::default())
+        .unaligned_bytes_required()
+        + sym
+            .solve_in_place_scratch::<f64>(1, Par::Seq)
+            .unaligned_bytes_required();
+    let factor_nnz = sym.len_val();
+    Analysis {
+        factor_nnz,
+        flops,
+        values: 8 * factor_nnz as u64,
+        structure: (structure + 40 * n) as u64,
+        scratch: scratch as u64,
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::solver::linalg::SparseCholesky;
+
+    /// The symbolic count is the factor the solver allocates, on a 2-D grid with both
+    /// orderings.
+    #[test]
+    fn counts_the_factor_the_solver_allocates() {
+        let m = 30;
+        let n = m * m;
+        let mut pairs = vec![];
+        let mut pts = vec![];
+        for i in 0..m {
+            for j in 0..m {
+                let k = i * m + j;
+                pts.push([i as f64, j as f64, 0.0]);
+                pairs.push((k, k));
+                if i + 1 < m {
+                    pairs.push((k, k + m));
+                }
+                if j + 1 < m {
+                    pairs.push((k, k + 1));
+                }
+            }
+        }
+        let amd = factor_cost(n, &pairs, Some(&pts), Ordering::Amd);
+        assert_eq!(
+            amd.factor_nnz,
+            SparseCholesky::new(n, &pairs).0.factor_nnz()
+        );
+        assert_eq!(amd.hessian_nnz, pairs.len());
+        let nd = factor_cost(n, &pairs, Some(&pts), Ordering::NestedDissection);
+        let order = nested_dissection(n, &pairs, &pts);
+        let solver = SparseCholesky::with_order(n, &pairs, Some(&order)).0;
+        assert_eq!(nd.factor_nnz, solver.factor_nnz());
+        assert!(amd.flops >= amd.factor_nnz as f64);
+    }
+}
