@@ -92,7 +92,21 @@ impl Dissection<'_> {
         let axis = self.longest_axis(&ids);
         let mid = ids.len() / 2;
         let pts = self.points;
-        ids.select_nth_unstable_by(mid, |&a, &b| pts[a][axis].total_cmp(&pts[b][axis]));
+        // Ties along the axis (a rod lying across it: all its unknowns at one coordinate) are
+        // split by the other axes, so that each side stays contiguous; an arbitrary split of
+        // equal coordinates would put a whole rod on the boundary (a dense separator).
+        let key = |i: usize| {
+            let p = pts[i];
+            [p[axis], p[(axis + 1) % 3], p[(axis + 2) % 3]]
+        };
+        ids.select_nth_unstable_by(mid, |&a, &b| {
+            let (ka, kb) = (key(a), key(b));
+            ka[0]
+                .total_cmp(&kb[0])
+                .then(ka[1].total_cmp(&kb[1]))
+                .then(ka[2].total_cmp(&kb[2]))
+                .then(a.cmp(&b))
+        });
         self.calls += 1;
         let call = self.calls;
         for (k, &i) in ids.iter().enumerate() {
