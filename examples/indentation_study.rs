@@ -101,6 +101,13 @@ fn main() {
             }
         }
     }
+    for joint in [JointChoice::Hinge, JointChoice::Elastic] {
+        for &n in &NS[..5] {
+            for &ratio in &RATIOS {
+                rows.push(one(n, ratio, joint, 0.3));
+            }
+        }
+    }
     for &n in &[8, 12, 16] {
         rows.push(one(n, 5e-3, JointChoice::Ball, 0.0));
         rows.push(one(n, 5e-3, JointChoice::Ball, 0.5));
@@ -123,7 +130,7 @@ fn main() {
     }
     // Rigid joints from n = 20 on: the cap-net form finding reaches other states (apex 0.87 R)
     // or takes 10–27 s; the fit keeps n ≤ 16 for them (docs/indentation.md).
-    for (joint, n_max) in [("ball", 24), ("rigid", 16)] {
+    for (joint, n_max) in [("ball", 24), ("rigid", 16), ("hinge", 16), ("elastic", 16)] {
         let pts: Vec<(f64, f64, f64)> = rows
             .iter()
             .filter(|r| r.joint == joint && r.nu == 0.3 && r.n <= n_max)
