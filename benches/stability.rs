@@ -50,7 +50,9 @@ fn hemisphere_12x8_apex_stiffness(bencher: divan::Bencher) {
 #[divan::bench(sample_count = 20)]
 fn euler_column_buckling(bencher: divan::Bencher) {
     let path = format!("{}/networks/euler_column.ron", env!("CARGO_MANIFEST_DIR"));
-    let scene = rodnet::scene::load(std::path::Path::new(&path)).expect("scene").0;
+    let scene = rodnet::scene::load(std::path::Path::new(&path))
+        .expect("scene")
+        .0;
     bencher.bench_local(|| {
         let mut net = rodnet::network::build(&scene).expect("network");
         let b = buckling(&mut net, 4).expect("factors");
