@@ -63,6 +63,67 @@ pub fn gauge_modes(model: &Model, gauge_node: Option<usize>) -> Vec<Vec<f64>> {
     gauge_node.map_or_else(Vec::new, |g| rotations(model, g, &weights(model)))
 }
 
+/// The rigid turns of an unsupported structure about its gauge node to second order: for each
+/// axis k, the first-order motion r_k (positions e_k × (x − x_g), edge angles e_k·t, frames
+/// e_k), and for each pair j ≤ k (in the order (0,0), (0,1), (0,2), (1,1), (1,2), (2,2)) the
+/// positions' second-order motion ½(e_j × (e_k × x) + e_k × (e_j × x)). Dead loads have no
+/// Hessian: their stiffness along a finite turn is in the second-order term only.
+pub fn turn_paths(
+    model: &Model,
+    gauge_node: Option<usize>,
+) -> Option<crate::solver::problem::TurnPaths> {
+    let g = gauge_node?;
+    let u = model.unknowns();
+    let xg = model.position(g);
+    let axis = |k: usize| -> [f64; 3] { std::array::from_fn(|j| f64::from(j == k)) };
+    let first: Vec<Vec<f64>> = (0..3)
+        .map(|k| {
+            let omega = axis(k);
+            let mut r = vec![0.0; model.n_free];
+            for n in 0..model.layout.n_nodes() {
+                let m = cross(omega, sub(model.position(n), xg));
+                for (j, mj) in m.iter().enumerate() {
+                    if let Some(i) = u.of_node(n, j) {
+                        r[i] = *mj;
+                    }
+                }
+            }
+            for (e, [a, b]) in model.edge_nodes.iter().enumerate() {
+                if let Some(i) = u.of(model.layout.theta(e)) {
+                    let t = sub(model.position(*b), model.position(*a));
+                    r[i] = dot(omega, t) / norm(t).max(f64::MIN_POSITIVE);
+                }
+            }
+            for f in 0..model.layout.n_frames() {
+                for (j, v) in model.layout.frame(f).into_iter().enumerate() {
+                    if let Some(i) = u.of(v) {
+                        r[i] = omega[j];
+                    }
+                }
+            }
+            r
+        })
+        .collect();
+    let mut second = Vec::new();
+    for j in 0..3 {
+        for k in j..3 {
+            let (a, b) = (axis(j), axis(k));
+            let mut c = vec![0.0; model.n_free];
+            for n in 0..model.layout.n_nodes() {
+                let x = sub(model.position(n), xg);
+                let (p, q) = (cross(a, cross(b, x)), cross(b, cross(a, x)));
+                for i3 in 0..3 {
+                    if let Some(i) = u.of_node(n, i3) {
+                        c[i] = 0.5 * (p[i3] + q[i3]);
+                    }
+                }
+            }
+            second.push(c);
+        }
+    }
+    Some(crate::solver::problem::TurnPaths { first, second })
+}
+
 /// Whether every mode lies in the span of an unsupported structure's rigid rotations.
 pub fn gauge_only(model: &Model, gauge_node: Option<usize>, modes: &[Vec<f64>]) -> bool {
     if gauge_node.is_none() {

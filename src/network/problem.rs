@@ -246,6 +246,9 @@ impl NewtonProblem for NetworkProblem<'_> {
     fn gauge_modes(&mut self) -> Vec<Vec<f64>> {
         crate::network::mechanism::gauge_modes(self.model, self.gauge_node)
     }
+    fn gauge_turns(&mut self) -> Option<crate::solver::problem::TurnPaths> {
+        crate::network::mechanism::turn_paths(self.model, self.gauge_node)
+    }
     fn gauge_only(&mut self, modes: &[Vec<f64>]) -> bool {
         crate::network::mechanism::gauge_only(self.model, self.gauge_node, modes)
     }

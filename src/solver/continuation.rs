@@ -81,7 +81,12 @@ struct Path {
 
 impl Path {
     fn follow<P: NewtonProblem>(&mut self, st: &mut Newton, p: &mut P, s: &NewtonSettings) {
-        let trivial = s.equilibrate_only || p.continuation_is_trivial();
+        // An unsupported structure whose full dead loads make one of its rigid turns unstable
+        // has no stable path from λ = 0 (every state on it is a saddle, and sub-steps only
+        // crawl): it is solved at the full load directly, where the saddle escape turns it.
+        let trivial = s.equilibrate_only
+            || p.continuation_is_trivial()
+            || (st.qp.is_none() && st.turns_unstable_under_full_load(p));
         p.set_continuation(if trivial { 1.0 } else { 0.0 });
         if trivial {
             // Nothing moves along the path (a form-finding step with fixed supports and no

@@ -26,6 +26,60 @@ impl Newton {
         gauge
     }
 
+    /// Whether the full loads make a rigid turn of an unsupported structure unstable at its
+    /// start (a free ring pinched by a balanced dead pair): then every state on the load path
+    /// is a saddle. The turns' stiffness matrix is G_jk = r_jᵀ H r_k + gᵀ c_jk at λ = 1 (H and
+    /// g there, c the turns' second-order motion); unstable when its lowest eigenvalue is
+    /// negative beyond round-off.
+    pub(super) fn turns_unstable_under_full_load<P: super::NewtonProblem>(
+        &mut self,
+        p: &mut P,
+    ) -> bool {
+        let Some(super::problem::TurnPaths { first, second }) = p.gauge_turns() else {
+            return false;
+        };
+        p.set_continuation(1.0);
+        let e = p.assemble(&mut self.g, Some(&mut self.chol.values));
+        p.set_continuation(0.0);
+        if !e.is_finite() || first.len() != 3 || second.len() != 6 {
+            return false;
+        }
+        let mut hv = vec![0.0; self.g.len()];
+        let hr: Vec<Vec<f64>> = first
+            .iter()
+            .map(|r| {
+                self.chol.multiply(r, &mut hv);
+                hv.clone()
+            })
+            .collect();
+        let (mut elastic, mut load) = (vec![vec![0.0; 3]; 3], vec![vec![0.0; 3]; 3]);
+        let mut idx = 0;
+        for j in 0..3 {
+            for k in j..3 {
+                let (h, l) = (dot(&first[j], &hr[k]), dot(&self.g, &second[idx]));
+                (elastic[j][k], elastic[k][j], load[j][k], load[k][j]) = (h, h, l, l);
+                idx += 1;
+            }
+        }
+        let total: Vec<Vec<f64>> = (0..3)
+            .map(|j| (0..3).map(|k| elastic[j][k] + load[j][k]).collect())
+            .collect();
+        let load_scale = jacobi(load).0.iter().fold(0.0, |m: f64, v| m.max(v.abs()));
+        // r_kᵀHr_k of a rigid turn is round-off of the elastic scale (1e-12 of it, generously).
+        let w_norm: f64 = first
+            .iter()
+            .map(|r| {
+                r.iter()
+                    .zip(&self.weights)
+                    .map(|(x, w)| w * x * x)
+                    .sum::<f64>()
+            })
+            .fold(0.0, f64::max);
+        let noise = 1e-10 * self.scaled_diagonal() * w_norm;
+        let lowest = jacobi(total).0.into_iter().fold(f64::INFINITY, f64::min);
+        lowest < -(1e-6 * load_scale).max(noise)
+    }
+
     /// One step of inverse iteration from a generic vector with the current factor: a growth
     /// beyond 1/ZERO of the scaled diagonal means an eigenvalue below ZERO (relative), which a
     /// Cholesky factorization of a singular matrix can hide behind a round-off pivot.

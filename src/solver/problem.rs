@@ -2,6 +2,14 @@
 //! try and accept steps, and a continuation parameter. Rods, networks, joints and inequality
 //! constraints all plug in through this interface.
 
+/// Rigid turns to second order (`NewtonProblem::gauge_turns`): three first-order motions over
+/// the free unknowns and the six second-order motions of their pairs (0,0), (0,1), (0,2), (1,1),
+/// (1,2), (2,2).
+pub struct TurnPaths {
+    pub first: Vec<Vec<f64>>,
+    pub second: Vec<Vec<f64>>,
+}
+
 pub trait NewtonProblem {
     /// A saved iterate, for retrying a continuation step and for secant prediction.
     type Snapshot: Clone;
@@ -82,6 +90,12 @@ pub trait NewtonProblem {
     /// `unknown_scales`): motions it leaves free on purpose. Default none.
     fn gauge_modes(&mut self) -> Vec<Vec<f64>> {
         Vec::new()
+    }
+    /// The rigid turns the gauge leaves free, to second order: three first-order motions and
+    /// the six second-order ones of their pairs (see `network::mechanism::turn_paths`). None
+    /// when the problem has no gauge turns.
+    fn gauge_turns(&mut self) -> Option<TurnPaths> {
+        None
     }
     /// Whether the given zero-stiffness modes are all gauge modes (rigid motions the problem
     /// leaves free on purpose), so that the state is stable on the complement.
