@@ -64,8 +64,7 @@ pub fn gauge_modes(model: &Model, gauge_node: Option<usize>) -> Vec<Vec<f64>> {
 }
 
 /// The rigid turns of an unsupported structure about its gauge node to second order: for each
-/// axis k, the first-order motion r_k (positions e_k × (x − x_g), edge angles e_k·t, frames
-/// e_k), and for each pair j ≤ k (in the order (0,0), (0,1), (0,2), (1,1), (1,2), (2,2)) the
+/// axis k, the first-order motion r_k (`turn`), and for each pair j ≤ k (in the order (0,0), (0,1), (0,2), (1,1), (1,2), (2,2)) the
 /// positions' second-order motion ½(e_j × (e_k × x) + e_k × (e_j × x)). Dead loads have no
 /// Hessian: their stiffness along a finite turn is in the second-order term only.
 pub fn turn_paths(
@@ -76,34 +75,7 @@ pub fn turn_paths(
     let u = model.unknowns();
     let xg = model.position(g);
     let axis = |k: usize| -> [f64; 3] { std::array::from_fn(|j| f64::from(j == k)) };
-    let first: Vec<Vec<f64>> = (0..3)
-        .map(|k| {
-            let omega = axis(k);
-            let mut r = vec![0.0; model.n_free];
-            for n in 0..model.layout.n_nodes() {
-                let m = cross(omega, sub(model.position(n), xg));
-                for (j, mj) in m.iter().enumerate() {
-                    if let Some(i) = u.of_node(n, j) {
-                        r[i] = *mj;
-                    }
-                }
-            }
-            for (e, [a, b]) in model.edge_nodes.iter().enumerate() {
-                if let Some(i) = u.of(model.layout.theta(e)) {
-                    let t = sub(model.position(*b), model.position(*a));
-                    r[i] = dot(omega, t) / norm(t).max(f64::MIN_POSITIVE);
-                }
-            }
-            for f in 0..model.layout.n_frames() {
-                for (j, v) in model.layout.frame(f).into_iter().enumerate() {
-                    if let Some(i) = u.of(v) {
-                        r[i] = omega[j];
-                    }
-                }
-            }
-            r
-        })
-        .collect();
+    let first: Vec<Vec<f64>> = (0..3).map(|k| turn(model, xg, axis(k))).collect();
     let mut second = Vec::new();
     for j in 0..3 {
         for k in j..3 {
@@ -141,39 +113,14 @@ fn wdot(a: &[f64], b: &[f64], w: &[f64]) -> f64 {
     a.iter().zip(b).zip(w).map(|((x, y), w)| w * x * y).sum()
 }
 
-/// The three rigid rotations about the gauge node (positions ω × (x − x_g), edge angles ω·t,
-/// vertex frames ω), W-orthonormalized.
+/// The three rigid rotations about the gauge node (`turn`), W-orthonormalized.
 fn rotations(model: &Model, gauge: usize, w: &[f64]) -> Vec<Vec<f64>> {
-    let u = model.unknowns();
     let xg = model.position(gauge);
     let mut out: Vec<Vec<f64>> = Vec::new();
     for k in 0..3 {
         let mut omega = [0.0; 3];
         omega[k] = 1.0;
-        let mut r = vec![0.0; model.n_free];
-        for n in 0..model.layout.n_nodes() {
-            let m = cross(omega, sub(model.position(n), xg));
-            for (j, mj) in m.iter().enumerate() {
-                if let Some(i) = u.of_node(n, j) {
-                    r[i] = *mj;
-                }
-            }
-        }
-        // Edge angles are measured from parallel-transported references, which do not turn
-        // about the edge: a rigid turn ω changes each θ by ω·t.
-        for (e, [a, b]) in model.edge_nodes.iter().enumerate() {
-            if let Some(i) = u.of(model.layout.theta(e)) {
-                let t = sub(model.position(*b), model.position(*a));
-                r[i] = dot(omega, t) / norm(t).max(f64::MIN_POSITIVE);
-            }
-        }
-        for f in 0..model.layout.n_frames() {
-            for (j, v) in model.layout.frame(f).into_iter().enumerate() {
-                if let Some(i) = u.of(v) {
-                    r[i] = omega[j];
-                }
-            }
-        }
+        let mut r = turn(model, xg, omega);
         for q in &out {
             let c = wdot(&r, q, w);
             r.iter_mut().zip(q).for_each(|(x, q)| *x -= c * q);
@@ -185,6 +132,36 @@ fn rotations(model: &Model, gauge: usize, w: &[f64]) -> Vec<Vec<f64>> {
         }
     }
     out
+}
+
+/// The rigid turn ω about `xg` over the free unknowns, to first order: positions
+/// ω × (x − xg), edge angles ω·t (they are measured from parallel-transported references,
+/// which do not turn about the edge), vertex frames ω.
+fn turn(model: &Model, xg: [f64; 3], omega: [f64; 3]) -> Vec<f64> {
+    let u = model.unknowns();
+    let mut r = vec![0.0; model.n_free];
+    for n in 0..model.layout.n_nodes() {
+        let m = cross(omega, sub(model.position(n), xg));
+        for (j, mj) in m.iter().enumerate() {
+            if let Some(i) = u.of_node(n, j) {
+                r[i] = *mj;
+            }
+        }
+    }
+    for (e, [a, b]) in model.edge_nodes.iter().enumerate() {
+        if let Some(i) = u.of(model.layout.theta(e)) {
+            let t = sub(model.position(*b), model.position(*a));
+            r[i] = dot(omega, t) / norm(t).max(f64::MIN_POSITIVE);
+        }
+    }
+    for f in 0..model.layout.n_frames() {
+        for (j, v) in model.layout.frame(f).into_iter().enumerate() {
+            if let Some(i) = u.of(v) {
+                r[i] = omega[j];
+            }
+        }
+    }
+    r
 }
 
 /// Motion of node `n` in mode `v` (zero for fixed coordinates).

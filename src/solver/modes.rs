@@ -1,7 +1,8 @@
 //! The lowest eigenpairs of the Hessian, H u = λ W u in the solver's dimensionless metric W, by
 //! subspace (block inverse) iteration with the factor of H + τW already computed, and a
-//! Rayleigh–Ritz step on the subspace. Used to find zero-stiffness modes (mechanisms) at the
-//! start of a path.
+//! Rayleigh–Ritz step on the subspace (`Newton::subspace`, also behind `spectrum.rs`). Used to
+//! find zero-stiffness modes (mechanisms, gauge turns) at the start of a path and to tell when
+//! dead loads make a free structure's rigid turn unstable.
 
 use super::newton::Newton;
 
@@ -38,12 +39,38 @@ impl Newton {
         let Some(super::problem::TurnPaths { first, second }) = p.gauge_turns() else {
             return false;
         };
-        p.set_continuation(1.0);
-        let e = p.assemble(&mut self.g, Some(&mut self.chol.values));
-        p.set_continuation(0.0);
-        if !e.is_finite() || first.len() != 3 || second.len() != 6 {
+        if first.len() != 3 || second.len() != 6 {
             return false;
         }
+        // The loads' part gᵀc first (a gradient only): the elastic part of a rigid turn is zero
+        // at an equilibrium start, so without a negative load part there is nothing to find,
+        // and the Hessian is assembled only when there is.
+        p.set_continuation(1.0);
+        let e = p.assemble(&mut self.g, None);
+        p.set_continuation(0.0);
+        if !e.is_finite() {
+            return false;
+        }
+        let pairs = |f: &dyn Fn(usize, usize, usize) -> f64| {
+            let mut m = vec![vec![0.0; 3]; 3];
+            let mut idx = 0;
+            for j in 0..3 {
+                for k in j..3 {
+                    (m[j][k], m[k][j]) = (f(j, k, idx), f(j, k, idx));
+                    idx += 1;
+                }
+            }
+            m
+        };
+        let load = pairs(&|_, _, i| dot(&self.g, &second[i]));
+        let load_eigs = jacobi(load.clone()).0;
+        let load_scale = load_eigs.iter().fold(0.0, |m: f64, v| m.max(v.abs()));
+        if load_eigs.iter().all(|&v| v >= -1e-6 * load_scale) {
+            return false;
+        }
+        p.set_continuation(1.0);
+        p.assemble(&mut self.g, Some(&mut self.chol.values));
+        p.set_continuation(0.0);
         let mut hv = vec![0.0; self.g.len()];
         let hr: Vec<Vec<f64>> = first
             .iter()
@@ -52,19 +79,10 @@ impl Newton {
                 hv.clone()
             })
             .collect();
-        let (mut elastic, mut load) = (vec![vec![0.0; 3]; 3], vec![vec![0.0; 3]; 3]);
-        let mut idx = 0;
-        for j in 0..3 {
-            for k in j..3 {
-                let (h, l) = (dot(&first[j], &hr[k]), dot(&self.g, &second[idx]));
-                (elastic[j][k], elastic[k][j], load[j][k], load[k][j]) = (h, h, l, l);
-                idx += 1;
-            }
-        }
+        let elastic = pairs(&|j, k, _| dot(&first[j], &hr[k]));
         let total: Vec<Vec<f64>> = (0..3)
             .map(|j| (0..3).map(|k| elastic[j][k] + load[j][k]).collect())
             .collect();
-        let load_scale = jacobi(load).0.iter().fold(0.0, |m: f64, v| m.max(v.abs()));
         // r_kᵀHr_k of a rigid turn is round-off of the elastic scale (1e-12 of it, generously).
         let w_norm: f64 = first
             .iter()
@@ -107,29 +125,55 @@ impl Newton {
     /// Up to `k` lowest eigenpairs (λ relative to the Hessian's scaled diagonal, W-normalized
     /// vectors), ascending. Needs `chol` factored (with any shift) and its values holding H.
     pub(super) fn lowest_modes(&mut self, k: usize) -> Vec<(f64, Vec<f64>)> {
+        // Eigenvalues are needed to tell zero (|λ| < 1e-10 of the scale) from not: settled
+        // when the small ones, and how many they are, moved by less than 1e-6 of themselves or
+        // of 1e-12 of the scale. A zero one is amplified by 1/τ and shows within two rounds.
+        let scale = self.scaled_diagonal().max(f64::MIN_POSITIVE);
+        let floor = 1e-12 * scale;
+        let small = move |v: &[f64]| v.iter().filter(|&&a| a.abs() < 1e4 * floor).count();
+        let settled = move |now: &[f64], last: &[f64]| {
+            small(now) == small(last)
+                && now
+                    .iter()
+                    .zip(last)
+                    .filter(|(a, _)| a.abs() < 1e4 * floor)
+                    .all(|(a, b)| (a - b).abs() <= 1e-6 * a.abs().max(floor))
+        };
+        let ritz = self.subspace(k, k, 30, settled);
+        ritz.pairs
+            .into_iter()
+            .map(|(l, v)| (l / scale, v))
+            .collect()
+    }
+
+    /// Block inverse iteration v ← (H + τW)⁻¹Wv with a Rayleigh–Ritz step each round, on a
+    /// block of `block` vectors, until `settled(now, last)` holds for the `k` lowest Ritz
+    /// values of two rounds (from the third) or `max_rounds` pass. Needs `chol` factored (with
+    /// any shift) and its values holding H. Returns the `k` lowest pairs (absolute eigenvalues,
+    /// W-normalized vectors), ascending.
+    pub(super) fn subspace(
+        &mut self,
+        k: usize,
+        block: usize,
+        max_rounds: usize,
+        settled: impl Fn(&[f64], &[f64]) -> bool,
+    ) -> Ritz {
         let n = self.g.len();
         let k = k.min(n);
         if k == 0 {
-            return Vec::new();
+            return Ritz {
+                pairs: Vec::new(),
+                rounds: 0,
+                settled: true,
+            };
         }
         let w = self.weights.clone();
-        let s = self.scales.clone();
-        let mut v: Vec<Vec<f64>> = (0..k)
-            .map(|j| {
-                (0..n)
-                    .map(|i| (1.0 + 0.5 * ((i as f64) * (0.7 + 0.31 * j as f64)).sin()) * s[i])
-                    .collect()
-            })
-            .collect();
+        let mut v = start_block(&self.scales, block.clamp(k, n));
         let mut hv = vec![0.0; n];
         let mut last: Vec<f64> = vec![f64::INFINITY; k];
-        let mut pairs = Vec::new();
-        // Eigenvalues are needed to tell zero (|λ| < 1e-10 of the scale) from not: converged
-        // when each moved by less than 1e-6 of itself or of 1e-12 of the scale.
-        let floor = 1e-12 * self.scaled_diagonal().max(f64::MIN_POSITIVE);
-        for round in 0..30 {
+        let mut pairs: Vec<(f64, Vec<f64>)> = Vec::new();
+        for round in 1..=max_rounds {
             orthonormalize(&mut v, &w);
-            // Rayleigh–Ritz on span(v).
             let hvs: Vec<Vec<f64>> = v
                 .iter()
                 .map(|x| {
@@ -137,46 +181,82 @@ impl Newton {
                     hv.clone()
                 })
                 .collect();
-            let a: Vec<Vec<f64>> = (0..v.len())
-                .map(|i| (0..v.len()).map(|j| dot(&v[i], &hvs[j])).collect())
-                .collect();
-            let (vals, vecs) = jacobi(a);
-            let rotated: Vec<Vec<f64>> = (0..v.len())
-                .map(|c| {
-                    let mut x = vec![0.0; n];
-                    for (r, vr) in v.iter().enumerate() {
-                        let f = vecs[r][c];
-                        x.iter_mut().zip(vr).for_each(|(x, y)| *x += f * y);
-                    }
-                    x
-                })
-                .collect();
-            // Only the small eigenvalues matter (a zero one would be amplified by 1/τ and show
-            // within two rounds): converged when those, and how many they are, stopped moving.
-            let small = |v: &[f64]| v.iter().filter(|&&a| a.abs() < 1e4 * floor).count();
-            let done = round >= 2
-                && small(&vals) == small(&last)
-                && vals
-                    .iter()
-                    .zip(&last)
-                    .filter(|(a, _)| a.abs() < 1e4 * floor)
-                    .all(|(a, b)| (a - b).abs() <= 1e-6 * a.abs().max(floor));
-            last = vals.clone();
-            pairs = vals.into_iter().zip(rotated.clone()).collect();
-            if done {
-                break;
+            let (vals, vecs) = jacobi(gram(&v, &hvs));
+            pairs = ritz_vectors(&v, &vals, &vecs);
+            pairs.sort_by(|a, b| a.0.total_cmp(&b.0));
+            let now: Vec<f64> = pairs.iter().take(k).map(|p| p.0).collect();
+            if round > 2 && now.len() == last.len() && settled(&now, &last) {
+                pairs.truncate(k);
+                return Ritz {
+                    pairs,
+                    rounds: round,
+                    settled: true,
+                };
             }
-            // One step of inverse iteration: v ← (H + τW)⁻¹ W v.
-            v = rotated;
+            last = now;
+            v = pairs.iter().map(|p| p.1.clone()).collect();
             for x in &mut v {
                 x.iter_mut().zip(&w).for_each(|(x, w)| *x *= w);
                 self.chol.solve(x);
             }
         }
-        let scale = self.scaled_diagonal().max(f64::MIN_POSITIVE);
-        pairs.sort_by(|a, b| a.0.total_cmp(&b.0));
-        pairs.into_iter().map(|(l, v)| (l / scale, v)).collect()
+        pairs.truncate(k);
+        Ritz {
+            pairs,
+            rounds: max_rounds,
+            settled: false,
+        }
     }
+}
+
+/// The result of `Newton::subspace`.
+pub(super) struct Ritz {
+    pub pairs: Vec<(f64, Vec<f64>)>,
+    pub rounds: usize,
+    pub settled: bool,
+}
+
+/// Deterministic, generic starting vectors, scaled like the unknowns.
+pub(super) fn start_block(scales: &[f64], m: usize) -> Vec<Vec<f64>> {
+    (0..m)
+        .map(|j| {
+            scales
+                .iter()
+                .enumerate()
+                .map(|(i, s)| (1.0 + 0.5 * ((i as f64) * (0.7 + 0.31 * j as f64)).sin()) * s)
+                .collect()
+        })
+        .collect()
+}
+
+/// The small symmetric matrix [xᵢ · yⱼ] (symmetrized: the products are symmetric up to
+/// round-off).
+pub(super) fn gram(x: &[Vec<f64>], y: &[Vec<f64>]) -> Vec<Vec<f64>> {
+    let g: Vec<Vec<f64>> = (0..x.len())
+        .map(|i| (0..y.len()).map(|j| dot(&x[i], &y[j])).collect())
+        .collect();
+    (0..g.len())
+        .map(|i| (0..g.len()).map(|j| 0.5 * (g[i][j] + g[j][i])).collect())
+        .collect()
+}
+
+/// The Ritz vectors Σᵣ x_r c_{r,j} for each column j of `coef`, with their values.
+pub(super) fn ritz_vectors(
+    x: &[Vec<f64>],
+    vals: &[f64],
+    coef: &[Vec<f64>],
+) -> Vec<(f64, Vec<f64>)> {
+    let n = x.first().map_or(0, Vec::len);
+    (0..vals.len())
+        .map(|c| {
+            let mut u = vec![0.0; n];
+            for (r, xr) in x.iter().enumerate() {
+                let f = coef[r][c];
+                u.iter_mut().zip(xr).for_each(|(u, y)| *u += f * y);
+            }
+            (vals[c], u)
+        })
+        .collect()
 }
 
 fn dot(a: &[f64], b: &[f64]) -> f64 {

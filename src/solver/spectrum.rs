@@ -7,7 +7,7 @@
 //! and gridshells), which a block resolves without reorthogonalization or restarts; the
 //! price is a few more solves per converged pair (docs/stability.md).
 
-use super::modes::{jacobi, orthonormalize, wdot};
+use super::modes::{gram, jacobi, orthonormalize, ritz_vectors, start_block, wdot};
 use super::newton::Newton;
 use super::ordering::factorization;
 use super::problem::NewtonProblem;
@@ -50,7 +50,7 @@ pub fn lowest_modes<P: NewtonProblem>(
     k: usize,
     ordering: Ordering,
 ) -> Result<Spectrum, String> {
-    let (mut nt, _) = newton_for(p, ordering);
+    let mut nt = newton_for(p, ordering);
     let n = nt.g.len();
     let k = k.min(n);
     let e = p.assemble(&mut nt.g, Some(&mut nt.chol.values));
@@ -61,59 +61,15 @@ pub fn lowest_modes<P: NewtonProblem>(
         .factor_regularized()
         .ok_or("the Hessian could not be factored even with a shift")?;
     let scale = nt.scaled_diagonal().max(f64::MIN_POSITIVE);
-    if k == 0 {
-        return Ok(Spectrum {
-            values: vec![],
-            vectors: vec![],
-            scale,
-            residual: 0.0,
-            rounds: 0,
-            converged: true,
-            shift,
-        });
-    }
     let w = nt.weights.clone();
-    let block = (k + k.div_ceil(2) + 2).min(n);
-    let mut v = start_block(&nt.scales, block);
+    let settled = |now: &[f64], last: &[f64]| {
+        now.iter()
+            .zip(last)
+            .all(|(a, b)| (a - b).abs() <= RITZ_TOLERANCE * a.abs().max(1e-8 * scale))
+    };
+    let ritz = nt.subspace(k, k + k.div_ceil(2) + 2, MAX_ROUNDS, settled);
+    let (pairs, rounds, converged) = (ritz.pairs, ritz.rounds, ritz.settled);
     let mut hv = vec![0.0; n];
-    let mut last = vec![f64::INFINITY; k];
-    let mut pairs: Vec<(f64, Vec<f64>)> = Vec::new();
-    let mut rounds = 0;
-    let mut converged = false;
-    while rounds < MAX_ROUNDS {
-        rounds += 1;
-        orthonormalize(&mut v, &w);
-        let hvs: Vec<Vec<f64>> = v
-            .iter()
-            .map(|x| {
-                nt.chol.multiply(x, &mut hv);
-                hv.clone()
-            })
-            .collect();
-        let a = gram(&v, &hvs);
-        let (vals, vecs) = jacobi(a);
-        pairs = ritz(&v, &vals, &vecs);
-        pairs.sort_by(|a, b| a.0.total_cmp(&b.0));
-        let now: Vec<f64> = pairs.iter().take(k).map(|p| p.0).collect();
-        let done = rounds > 2
-            && now.len() == k
-            && now
-                .iter()
-                .zip(&last)
-                .all(|(a, b)| (a - b).abs() <= RITZ_TOLERANCE * a.abs().max(1e-8 * scale));
-        last = now;
-        if done {
-            converged = true;
-            break;
-        }
-        // v ← (H + τW)⁻¹ W v on the Ritz vectors.
-        v = pairs.iter().map(|p| p.1.clone()).collect();
-        for x in &mut v {
-            x.iter_mut().zip(&w).for_each(|(x, w)| *x *= w);
-            nt.chol.solve(x);
-        }
-    }
-    pairs.truncate(k);
     let mut residual: f64 = 0.0;
     for (l, u) in &pairs {
         nt.chol.multiply(u, &mut hv);
@@ -154,7 +110,7 @@ pub fn linear_buckling<P: NewtonProblem>(
     k: usize,
     ordering: Ordering,
 ) -> Result<Buckling, String> {
-    let (mut nt, slots) = newton_for(p, ordering);
+    let mut nt = newton_for(p, ordering);
     let n = nt.g.len();
     p.set_continuation(0.0);
     let e0 = p.assemble(&mut nt.g, Some(&mut nt.chol.values));
@@ -221,7 +177,6 @@ pub fn linear_buckling<P: NewtonProblem>(
     if nt.chol.factor(0.0).is_err() {
         return Err("the Hessian at the start could not be factored again".into());
     }
-    let _ = slots;
     let k = k.min(n);
     let block = (2 * k + 4).min(n);
     let w = nt.weights.clone();
@@ -249,7 +204,7 @@ pub fn linear_buckling<P: NewtonProblem>(
             })
             .collect();
         let (mus, ys) = generalized(gram(&x, &kx), gram(&x, &bx))?;
-        let mut pairs = ritz(&x, &mus, &ys);
+        let mut pairs = ritz_vectors(&x, &mus, &ys);
         // Largest μ first: the smallest positive factors λ = 1/μ.
         pairs.sort_by(|a, b| b.0.total_cmp(&a.0));
         let now: Vec<f64> = pairs
@@ -306,7 +261,7 @@ pub fn compliance<P: NewtonProblem>(
     f: &[f64],
     ordering: Ordering,
 ) -> Result<f64, String> {
-    let (mut nt, _) = newton_for(p, ordering);
+    let mut nt = newton_for(p, ordering);
     let e = p.assemble(&mut nt.g, Some(&mut nt.chol.values));
     if !e.is_finite() {
         return Err("the energy is not finite at this state".into());
@@ -324,7 +279,7 @@ pub fn compliance<P: NewtonProblem>(
 }
 
 /// A Newton workspace over `p` with its Hessian pattern, factor and unknown scales.
-fn newton_for<P: NewtonProblem>(p: &mut P, ordering: Ordering) -> (Newton, Vec<usize>) {
+fn newton_for<P: NewtonProblem>(p: &mut P, ordering: Ordering) -> Newton {
     let n = p.num_free();
     let pairs = p.hessian_pattern();
     let (chol, slots) = factorization(p, n, &pairs, ordering);
@@ -334,47 +289,7 @@ fn newton_for<P: NewtonProblem>(p: &mut P, ordering: Ordering) -> (Newton, Vec<u
     for (w, s) in nt.weights.iter_mut().zip(&nt.scales) {
         *w = 1.0 / (s * s);
     }
-    (nt, slots)
-}
-
-/// Deterministic, generic starting vectors, scaled like the unknowns.
-fn start_block(scales: &[f64], m: usize) -> Vec<Vec<f64>> {
-    (0..m)
-        .map(|j| {
-            scales
-                .iter()
-                .enumerate()
-                .map(|(i, s)| (1.0 + 0.5 * ((i as f64) * (0.7 + 0.31 * j as f64)).sin()) * s)
-                .collect()
-        })
-        .collect()
-}
-
-/// The small matrix [xᵢ · yⱼ].
-fn gram(x: &[Vec<f64>], y: &[Vec<f64>]) -> Vec<Vec<f64>> {
-    let dot = |a: &[f64], b: &[f64]| a.iter().zip(b).map(|(p, q)| p * q).sum::<f64>();
-    let g: Vec<Vec<f64>> = (0..x.len())
-        .map(|i| (0..y.len()).map(|j| dot(&x[i], &y[j])).collect())
-        .collect();
-    // Symmetrize: the products are symmetric up to round-off.
-    (0..g.len())
-        .map(|i| (0..g.len()).map(|j| 0.5 * (g[i][j] + g[j][i])).collect())
-        .collect()
-}
-
-/// The Ritz vectors Σᵣ x_r c_{r,j} for each column j of `coef`, with their values.
-fn ritz(x: &[Vec<f64>], vals: &[f64], coef: &[Vec<f64>]) -> Vec<(f64, Vec<f64>)> {
-    let n = x.first().map_or(0, Vec::len);
-    (0..vals.len())
-        .map(|c| {
-            let mut u = vec![0.0; n];
-            for (r, xr) in x.iter().enumerate() {
-                let f = coef[r][c];
-                u.iter_mut().zip(xr).for_each(|(u, y)| *u += f * y);
-            }
-            (vals[c], u)
-        })
-        .collect()
+    nt
 }
 
 /// The small generalized problem B y = μ A y, A positive definite: μ and the A-orthonormal y
