@@ -56,7 +56,7 @@ fn a_simply_supported_beam_has_its_midspan_stiffness() {
                 depth: 1e-6,
                 steps: 1,
             };
-            let c = push(&scene, &sol.network, node, &how, &settings_of(&scene)).unwrap();
+            let c = push(&scene, &sol.network, &how, &settings_of(&scene)).unwrap();
             assert!(c.complete && c.frictionless, "{c:?}");
             let (d, f) = c.points[1];
             let slope = f / d;

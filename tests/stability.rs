@@ -181,6 +181,23 @@ fn tmpdir(name: &str) -> std::path::PathBuf {
     d
 }
 
+/// Runs `cmd`, which must exit 0, then reads the results JSON it wrote to `json`.
+fn run_json(cmd: &mut std::process::Command, json: &std::path::Path) -> serde_json::Value {
+    let out = cmd.output().unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(0), "{err}");
+    serde_json::from_str(&std::fs::read_to_string(json).unwrap()).unwrap()
+}
+
+/// A JSON array of numbers.
+fn floats(v: &serde_json::Value) -> Vec<f64> {
+    v.as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x.as_f64().unwrap())
+        .collect()
+}
+
 fn load_obj(path: &std::path::Path) -> Vec<tobj::Model> {
     let opts = tobj::LoadOptions {
         single_index: false,
@@ -211,35 +228,19 @@ fn modes_and_buckle_commands_report_and_draw_the_modes() {
     let scene = d.join("col.ron");
     std::fs::write(&scene, column(n, "Clamp", "", &tip)).unwrap();
     let (json, obj) = (d.join("s.json"), d.join("m.obj"));
-    let out = rodnet()
-        .args(["solve", scene.to_str().unwrap(), "--modes", "4", "--quiet"])
-        .args([
-            "--json",
-            json.to_str().unwrap(),
-            "--modes-obj",
-            obj.to_str().unwrap(),
-        ])
-        .output()
-        .unwrap();
-    assert_eq!(
-        out.status.code(),
-        Some(0),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
+    let v = run_json(
+        rodnet()
+            .args(["solve", scene.to_str().unwrap(), "--modes", "4", "--quiet"])
+            .args(["--json", json.to_str().unwrap()])
+            .args(["--modes-obj", obj.to_str().unwrap()]),
+        &json,
     );
-    let v: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
     let st = &v["stability"];
     assert_eq!(st["stable"], true, "{st}");
     assert_eq!(st["negative"], 0);
     assert_eq!(st["unit"], "N/m");
     assert_eq!(st["converged"], true);
-    let ev: Vec<f64> = st["eigenvalues"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|x| x.as_f64().unwrap())
-        .collect();
+    let ev = floats(&st["eigenvalues"]);
     assert_eq!(ev.len(), 4);
     assert!(ev[0] > 0.0 && ev.windows(2).all(|w| w[0] <= w[1]), "{ev:?}");
     assert!((ev[0] - ev[1]).abs() < 1e-6 * ev[0], "lateral pair: {ev:?}");
@@ -249,31 +250,13 @@ fn modes_and_buckle_commands_report_and_draw_the_modes() {
     assert_eq!(models[0].mesh.positions.len(), 3 * (n + 1));
 
     let bj = d.join("b.json");
-    let out = rodnet()
-        .args([
-            "buckle",
-            scene.to_str().unwrap(),
-            "--modes",
-            "2",
-            "--json",
-            bj.to_str().unwrap(),
-        ])
-        .output()
-        .unwrap();
-    assert_eq!(
-        out.status.code(),
-        Some(0),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
+    let b = run_json(
+        rodnet()
+            .args(["buckle", scene.to_str().unwrap(), "--modes", "2"])
+            .args(["--json", bj.to_str().unwrap()]),
+        &bj,
     );
-    let b: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(&bj).unwrap()).unwrap();
-    let f: Vec<f64> = b["critical_load_factors"]
-        .as_array()
-        .unwrap()
-        .iter()
-        .map(|x| x.as_f64().unwrap())
-        .collect();
+    let f = floats(&b["critical_load_factors"]);
     // The load is half Euler's: the factor is 2, within the n = 32 error (2e-4).
     assert!((f[0] - 2.0).abs() < 1e-3, "{f:?}");
     assert_eq!(b["modes"].as_array().unwrap().len(), 2);
@@ -331,28 +314,21 @@ fn buckle_path_check_rejects_the_spurious_factor_of_a_bent_cantilever() {
 fn the_gridshell_job_reports_its_modes() {
     let d = tmpdir("gridshell");
     let json = d.join("h.json");
-    let out = rodnet()
-        .args([
-            "gridshell",
-            "hemisphere",
-            "--rods",
-            "6",
-            "--modes",
-            "3",
-            "--quiet",
-        ])
-        .arg("--json")
-        .arg(&json)
-        .output()
-        .unwrap();
-    assert_eq!(
-        out.status.code(),
-        Some(0),
-        "{}",
-        String::from_utf8_lossy(&out.stderr)
+    let v = run_json(
+        rodnet()
+            .args([
+                "gridshell",
+                "hemisphere",
+                "--rods",
+                "6",
+                "--modes",
+                "3",
+                "--quiet",
+            ])
+            .arg("--json")
+            .arg(&json),
+        &json,
     );
-    let v: serde_json::Value =
-        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
     let st = &v["stability"];
     assert_eq!(st["stable"], true, "{st}");
     assert_eq!(st["eigenvalues"].as_array().unwrap().len(), 3);

@@ -94,7 +94,7 @@ pub fn run(a: &IndentArgs) -> i32 {
         depth: a.depth,
         steps: a.steps as usize,
     };
-    let curve = match push(&sc, &sol.network, node, &how, &settings) {
+    let curve = match push(&sc, &sol.network, &how, &settings) {
         Ok(c) => c,
         Err(e) => return bad(format_args!("{label}: {e}")),
     };

@@ -180,18 +180,7 @@ pub fn modes_obj(title: &str, modes: &[(String, Shape)]) -> String {
         let _ = writeln!(s, "o mode_{}", i + 1);
         for (name, points, closed) in rods {
             let _ = writeln!(s, "# rod {name}");
-            for p in points {
-                let _ = writeln!(s, "v {:.12e} {:.12e} {:.12e}", p[0], p[1], p[2]);
-            }
-            s.push('l');
-            for k in 0..points.len() {
-                let _ = write!(s, " {}", base + k);
-            }
-            if *closed {
-                let _ = write!(s, " {base}");
-            }
-            s.push('\n');
-            base += points.len();
+            base = crate::io::obj::polyline(&mut s, points, *closed, base);
         }
     }
     s

@@ -79,11 +79,14 @@ pub fn linear_stiffness(
 pub fn push(
     scene: &Scene,
     solved: &Network,
-    node: usize,
     how: &Push,
     settings: &NewtonSettings,
 ) -> Result<Curve, String> {
     let t0 = Instant::now();
+    let node = solved
+        .rod(&how.rod)
+        .and_then(|r| r.vertex_node(how.vertex))
+        .ok_or_else(|| format!("rod \"{}\" has no vertex {}", how.rod, how.vertex))?;
     let axis = axis_of(how.direction);
     let mut staged_scene = scene.clone();
     staged_scene.supports.push(Support {

@@ -399,14 +399,19 @@ impl Model {
         sx.min(sa)
     }
 
+    /// The mean rest edge length (0 without edges): the length unit of the unknowns' scales.
+    pub fn mean_edge(&self) -> f64 {
+        let n = self.rest_lengths.len().max(1) as f64;
+        self.rest_lengths.iter().sum::<f64>() / n
+    }
+
     /// Characteristic size of each free unknown: positions in units of the mean rest edge
     /// length, angles in radians. Turning an edge by one radian moves its end by about that
     /// length, so a unit dimensionless step is the same size for both; the bounding box's
     /// diagonal, the other natural length, damps the angles by (diagonal / edge)² relative to the
     /// positions (docs/design.md).
     pub fn unknown_scales(&self, scales: &mut [f64]) {
-        let n = self.rest_lengths.len().max(1) as f64;
-        let edge = self.rest_lengths.iter().sum::<f64>() / n;
+        let edge = self.mean_edge();
         for (v, &f) in self.free.iter().enumerate() {
             if f != FIXED {
                 scales[f as usize] = match self.kind(v) {

@@ -44,7 +44,7 @@ pub struct Stability {
 /// The lowest `k` eigenmodes of the network at its current state.
 pub fn analyse(net: &mut Network, k: usize) -> Result<Stability, String> {
     let t0 = Instant::now();
-    let ebar = mean_edge(net);
+    let ebar = mean_edge(&net.model);
     let mut p = NetworkProblem::of_network(net);
     let sp = spectrum::lowest_modes(&mut p, k, Ordering::Auto)?;
     let zero: Vec<Vec<f64>> = zero_vectors(&sp);
@@ -132,7 +132,7 @@ pub struct PathCritical {
 /// solver escapes the saddle) and its eigenvalue rises again. A rise after a fall is taken as
 /// such an overshoot: the solve is redone from the last sample with half the increment.
 pub fn critical_on_path(net: &mut Network, settings: &NewtonSettings, guess: f64) -> PathCritical {
-    let ebar = mean_edge(net);
+    let ebar = mean_edge(&net.model);
     let mut p = NetworkProblem::of_network(net);
     let mut out = PathCritical {
         factor: None,
@@ -255,7 +255,7 @@ pub fn mode_shape(net: &Network, mode: &[f64], fraction: f64) -> Shape {
             )
         },
     );
-    let diagonal = norm(sub(hi, lo)).max(mean_edge(net));
+    let diagonal = norm(sub(hi, lo)).max(mean_edge(&net.model));
     let dominant = largest
         .iter()
         .copied()
@@ -273,6 +273,14 @@ pub fn rods_now(net: &Network) -> Shape {
     rods_at(net, |n| net.model.position(n))
 }
 
+/// The mean rest edge length: the unit that turns edge angles into lengths (1 m without edges).
+fn mean_edge(m: &crate::network::Model) -> f64 {
+    match m.mean_edge() {
+        l if l > 0.0 => l,
+        _ => 1.0,
+    }
+}
+
 fn rods_at(net: &Network, at: impl Fn(usize) -> [f64; 3]) -> Shape {
     net.rods
         .iter()
@@ -284,13 +292,4 @@ fn rods_at(net: &Network, at: impl Fn(usize) -> [f64; 3]) -> Shape {
             )
         })
         .collect()
-}
-
-/// The mean rest edge length: the unit that turns edge angles into lengths.
-fn mean_edge(net: &Network) -> f64 {
-    let l = &net.model.rest_lengths;
-    if l.is_empty() {
-        return 1.0;
-    }
-    l.iter().sum::<f64>() / l.len() as f64
 }

@@ -222,21 +222,7 @@ mod tests {
     fn counts_the_factor_the_solver_allocates() {
         let m = 30;
         let n = m * m;
-        let mut pairs = vec![];
-        let mut pts = vec![];
-        for i in 0..m {
-            for j in 0..m {
-                let k = i * m + j;
-                pts.push([i as f64, j as f64, 0.0]);
-                pairs.push((k, k));
-                if i + 1 < m {
-                    pairs.push((k, k + m));
-                }
-                if j + 1 < m {
-                    pairs.push((k, k + 1));
-                }
-            }
-        }
+        let (pairs, pts) = crate::solver::ordering::grid_graph(m);
         let amd = factor_cost(n, &pairs, Some(&pts), Ordering::Amd);
         assert_eq!(
             amd.factor_nnz,

@@ -189,6 +189,27 @@ pub(super) fn factorization<P: NewtonProblem>(
     }
 }
 
+/// The graph of an m × m grid Laplacian (upper-triangle pairs with the diagonal) and its
+/// points: the test case of the orderings and of their cost estimate.
+#[cfg(test)]
+pub(crate) fn grid_graph(m: usize) -> (Vec<(usize, usize)>, Vec<[f64; 3]>) {
+    let (mut pairs, mut pts) = (vec![], vec![]);
+    for i in 0..m {
+        for j in 0..m {
+            let k = i * m + j;
+            pts.push([i as f64, j as f64, 0.0]);
+            pairs.push((k, k));
+            if i + 1 < m {
+                pairs.push((k, k + m));
+            }
+            if j + 1 < m {
+                pairs.push((k, k + 1));
+            }
+        }
+    }
+    (pairs, pts)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -199,21 +220,7 @@ mod tests {
     fn dissection_of_a_grid_is_a_permutation_with_small_fill() {
         let m = 40;
         let n = m * m;
-        let mut pairs = vec![];
-        let mut pts = vec![];
-        for i in 0..m {
-            for j in 0..m {
-                let k = i * m + j;
-                pts.push([i as f64, j as f64, 0.0]);
-                pairs.push((k, k));
-                if i + 1 < m {
-                    pairs.push((k, k + m));
-                }
-                if j + 1 < m {
-                    pairs.push((k, k + 1));
-                }
-            }
-        }
+        let (pairs, pts) = grid_graph(m);
         let order = nested_dissection(n, &pairs, &pts);
         let mut seen = vec![false; n];
         for &k in &order {
