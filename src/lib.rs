@@ -20,4 +20,5 @@ pub mod rod;
 pub mod scene;
 pub mod solver;
 pub mod study;
+pub mod surface;
 pub mod variables;

@@ -129,7 +129,7 @@ impl SectionRatio {
     }
 }
 
-fn parse_section(s: &str) -> Result<SectionRatio, String> {
+pub(super) fn parse_section(s: &str) -> Result<SectionRatio, String> {
     let (kind, dims) = s
         .split_once(':')
         .ok_or_else(|| format!("expected circle:r, ellipse:a,b or rectangle:w,h, got {s:?}"))?;

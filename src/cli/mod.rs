@@ -2,6 +2,7 @@
 //! dispatch to one module per command.
 
 mod buckle;
+mod fit;
 mod gridshell;
 mod indent;
 mod limits;
@@ -103,6 +104,11 @@ pub enum GridshellCommand {
     /// sphere and the net. With no output options it writes hemisphere.json, hemisphere.obj and
     /// hemisphere.txt into the current directory (or --out-dir).
     Hemisphere(HemisphereArgs),
+    /// Gridshell fitted to a target surface (an OBJ triangle mesh): the Chebyshev net on it by
+    /// the compass construction, the flat footprint that builds it, its form finding from the
+    /// net, and its distances to the target and the net (docs/gridshell.md). With no output
+    /// options it writes STEM-gridshell.json, .obj and .txt into the current directory.
+    Fit(fit::FitArgs),
 }
 
 pub fn run(cli: Cli) -> i32 {
@@ -147,6 +153,12 @@ pub fn run(cli: Cli) -> i32 {
         } => {
             args.limits.apply();
             gridshell::run(args)
+        }
+        Command::Gridshell {
+            shape: GridshellCommand::Fit(args),
+        } => {
+            args.limits.apply();
+            fit::run(args)
         }
         Command::Plot(args) => plot::run(&args),
         Command::Study {

@@ -255,7 +255,11 @@ pub fn footprint(spec: &HemisphereSpec) -> Footprint {
 /// spacings from the rod end): splitting them into as many edges as a full spacing would make
 /// edges a tenth as long, with ten times the round-off floor of the residual (stretching
 /// stiffness over edge length), enough to stall Newton at fine subdivisions (docs/gridshell.md).
-fn subdivided(keys: &[[f64; 3]], per_spacing: usize, spacing: f64) -> (Vec<[f64; 3]>, Vec<usize>) {
+pub(crate) fn subdivided(
+    keys: &[[f64; 3]],
+    per_spacing: usize,
+    spacing: f64,
+) -> (Vec<[f64; 3]>, Vec<usize>) {
     let mut points = Vec::new();
     let mut at = Vec::with_capacity(keys.len());
     for w in keys.windows(2) {

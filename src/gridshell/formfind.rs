@@ -243,7 +243,7 @@ fn onto_cap(model: &mut Model, rho: f64) {
 
 /// Turns the joint frames (Rigid, Hinge) from the surface normals `from` to `to`, so that a
 /// guess does not twist the rods against them.
-fn turn_frames(model: &mut Model, from: &dyn Fn(usize) -> [f64; 3], to: &[[f64; 3]]) {
+pub(crate) fn turn_frames(model: &mut Model, from: &dyn Fn(usize) -> [f64; 3], to: &[[f64; 3]]) {
     let mut turned = vec![false; model.state.frames.len()];
     for fb in &model.terms.frame_bend {
         let f = fb.port.frame;

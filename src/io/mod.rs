@@ -2,6 +2,7 @@
 pub mod atomic;
 pub mod csv;
 pub mod curve_plot;
+pub mod footprint;
 pub mod indent;
 pub mod obj;
 pub mod plot;

@@ -5,7 +5,8 @@ use serde::{Deserialize, Serialize};
 
 use crate::network::contact::Source;
 use crate::network::equilibrium::{
-    ConstraintForces, EdgeForces, Equilibrium, ReferenceCheck, RodEnergy, TargetCheck, Utilization,
+    ConstraintForces, EdgeForces, Equilibrium, NetBlock, ReferenceCheck, RodEnergy, TargetCheck,
+    Utilization,
 };
 use crate::network::model::EnergyParts;
 use crate::solver::NewtonReport;
@@ -114,9 +115,23 @@ pub struct ReactionJson {
 #[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct TargetJson {
     pub shape: String,
-    pub max_abs_radial_deviation: f64,
-    pub rms_radial_deviation: f64,
-    pub apex_height: f64,
+    /// Sphere targets: over R.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub max_abs_radial_deviation: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rms_radial_deviation: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub apex_height: Option<f64>,
+    /// Mesh targets: joints to the surface, m.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub max_abs_distance: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub rms_distance: Option<f64>,
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub mean_signed_distance: Option<f64>,
+    /// Fitted gridshells: the net (also at the top level of the results).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub net: Option<NetBlock>,
     /// Gridshells only: distance of each joint to its crossing on the Chebyshev net, over R.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub max_net_distance: Option<f64>,
@@ -249,6 +264,9 @@ pub struct Results {
     pub reactions: Vec<ReactionJson>,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub target: Option<TargetJson>,
+    /// Fitted gridshells: their Chebyshev net (the same block as `target.net`).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub net: Option<NetBlock>,
     /// Scenes with a `reference` only.
     #[serde(skip_serializing_if = "Option::is_none")]
     pub reference: Option<ReferenceJson>,
@@ -277,9 +295,13 @@ impl From<&TargetCheck> for TargetJson {
     fn from(t: &TargetCheck) -> Self {
         TargetJson {
             shape: t.shape.into(),
-            max_abs_radial_deviation: t.max_abs_radial_deviation,
-            rms_radial_deviation: t.rms_radial_deviation,
-            apex_height: t.apex_height,
+            max_abs_radial_deviation: t.sphere.map(|d| d.max_abs_radial_deviation),
+            rms_radial_deviation: t.sphere.map(|d| d.rms_radial_deviation),
+            apex_height: t.sphere.map(|d| d.apex_height),
+            max_abs_distance: t.mesh.map(|d| d.max_abs_distance),
+            rms_distance: t.mesh.map(|d| d.rms_distance),
+            mean_signed_distance: t.mesh.map(|d| d.mean_signed_distance),
+            net: t.net.clone(),
             max_net_distance: t.net_distance.map(|d| d.0),
             rms_net_distance: t.net_distance.map(|d| d.1),
         }
@@ -355,6 +377,7 @@ impl Results {
             joints,
             reactions,
             target: eq.target.as_ref().map(TargetJson::from),
+            net: eq.target.as_ref().and_then(|t| t.net.clone()),
             reference: eq.reference.clone(),
             solver: SolverJson {
                 factorizations: report.factorizations,
@@ -415,8 +438,12 @@ impl Results {
                     t.max_abs_radial_deviation,
                     t.rms_radial_deviation,
                     t.apex_height,
+                    t.max_abs_distance,
+                    t.rms_distance,
+                    t.mean_signed_distance,
                 ]
                 .iter()
+                .flatten()
                 .all(fin)
             })
             && self.reference.as_ref().is_none_or(|r| r.error.is_finite())

@@ -118,7 +118,40 @@ pub fn parse(file: &str, src: &str) -> Result<Scene, SceneError> {
         });
     }
     validate::validate(&scene).map_err(|e| SceneError::from_field(file, src, &e))?;
+    let mut scene = scene;
+    read_target_mesh(&mut scene, file, src)?;
     Ok(scene)
+}
+
+/// Largest target mesh file read, bytes.
+pub const MAX_MESH_BYTES: u64 = 1 << 30;
+
+/// Reads a `Mesh` target, its path relative to the scene file's folder. Errors in the mesh name
+/// the mesh file and the line of the bad element; a missing file, the scene's `target.path`.
+fn read_target_mesh(scene: &mut Scene, file: &str, src: &str) -> Result<(), SceneError> {
+    let Some(types::Target::Mesh { path, surface }) = &mut scene.target else {
+        return Ok(());
+    };
+    let base = Path::new(file).parent().unwrap_or(Path::new(""));
+    let full = base.join(path.as_str());
+    match crate::surface::Surface::load(&full, MAX_MESH_BYTES) {
+        Ok(s) => {
+            surface.0 = Some(std::sync::Arc::new(s));
+            Ok(())
+        }
+        Err(e) if e.line.is_none() => Err(SceneError::from_field(
+            file,
+            src,
+            &FieldError::global("target", "path", format!("{}: {}", e.file, e.message)),
+        )),
+        Err(e) => Err(SceneError {
+            file: e.file,
+            line: e.line,
+            // A mesh's problems are whole records: their first column.
+            column: e.line.map(|_| 1),
+            message: format!("target mesh: {}", e.message),
+        }),
+    }
 }
 
 /// The parser's message plus the text it stopped at: "Expected comma" alone does not show that

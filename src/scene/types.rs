@@ -274,7 +274,36 @@ pub struct Bound {
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub enum Target {
-    Sphere { center: [f64; 3], radius: f64 },
+    Sphere {
+        center: [f64; 3],
+        radius: f64,
+    },
+    /// A triangle mesh in an OBJ file, `path` relative to the scene file.
+    Mesh {
+        path: String,
+        /// The mesh, once read and checked (`scene::parse` reads it).
+        #[serde(skip)]
+        surface: LoadedSurface,
+    },
+}
+
+/// A target mesh read from its file. Equal whenever the paths are: the mesh is the file's.
+#[derive(Clone, Default)]
+pub struct LoadedSurface(pub Option<std::sync::Arc<crate::surface::Surface>>);
+
+impl PartialEq for LoadedSurface {
+    fn eq(&self, _: &Self) -> bool {
+        true
+    }
+}
+
+impl std::fmt::Debug for LoadedSurface {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match &self.0 {
+            Some(s) => write!(f, "{s:?}"),
+            None => write!(f, "(not read)"),
+        }
+    }
 }
 
 /// The equilibrium position of input vertex `vertex` of rod `rod`, m (vertex k is node

@@ -328,7 +328,7 @@ impl Plan {
             sphere_deviation: results
                 .target
                 .filter(|_| finite)
-                .map(|t| t.max_abs_radial_deviation),
+                .and_then(|t| t.max_abs_radial_deviation),
             richardson_error: None,
             order: None,
         }

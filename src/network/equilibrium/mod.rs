@@ -24,7 +24,7 @@ pub use internal_forces::{von_mises, EdgeForces};
 pub use reference::ReferenceCheck;
 pub use rod_energy::RodEnergy;
 pub use stress::VertexBending;
-pub use target::TargetCheck;
+pub use target::{MeshDistance, NetBlock, SphereDeviation, TargetCheck};
 
 /// One rod at equilibrium.
 #[derive(Debug, Clone)]
@@ -175,7 +175,7 @@ impl Equilibrium {
                 .collect(),
             reactions,
             constraints,
-            target: scene.target.as_ref().map(|t| target::check(net, t)),
+            target: scene.target.as_ref().and_then(|t| target::check(net, t)),
             reference: reference::check(net, scene),
             gauge: net.gauge.as_ref().map(|g| g.describe()),
             free_unknowns: m.n_free,

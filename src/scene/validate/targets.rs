@@ -6,6 +6,15 @@ use crate::scene::types::{Scene, Target};
 use crate::scene::FieldError;
 
 pub(super) fn target(s: &Scene) -> Result<(), FieldError> {
+    if let Some(Target::Mesh { path, .. }) = &s.target {
+        if path.trim().is_empty() {
+            return Err(FieldError::global(
+                "target",
+                "path",
+                "Mesh needs the path of an OBJ file".into(),
+            ));
+        }
+    }
     if let Some(Target::Sphere { center, radius }) = &s.target {
         if !finite3(center) || !positive(*radius) {
             return Err(FieldError::global(

@@ -1,0 +1,324 @@
+//! `rodnet gridshell fit TARGET.obj`: the options, their checks, and the job's outputs.
+
+use std::path::{Path, PathBuf};
+use std::sync::Arc;
+
+use clap::Args;
+
+use super::gridshell::{parse_section, SectionRatio};
+use super::network::JointArg;
+use super::output::{bad, check_outputs_creating, diagnostic, given};
+use super::output::{EXIT_NOT_CONVERGED, EXIT_OK};
+use super::progress::{self, show_progress};
+use crate::gridshell::fit::footprint::{FitSpec, DEFAULT_MIN_ANGLE_DEG};
+use crate::gridshell::fit::job::{self, FitError};
+use crate::gridshell::fit::net::Layout;
+use crate::gridshell::footprint::{to_ron, JointChoice};
+use crate::io::{atomic, footprint as fab, obj};
+use crate::scene::types::{Section, Solver};
+use crate::surface::Surface;
+
+#[derive(clap::ValueEnum, Clone, Copy, Debug, PartialEq, Eq)]
+pub enum LayoutArg {
+    On,
+    Between,
+}
+
+#[derive(Args, Debug)]
+pub struct FitArgs {
+    /// Target surface: an OBJ triangle mesh (v and f records), metres.
+    pub target: PathBuf,
+    /// Net spacing a (rod length between crossings), m.
+    #[arg(long)]
+    pub spacing: f64,
+    /// Where the two generators cross, projected onto the surface [default: the highest vertex].
+    #[arg(long, value_parser = parse_point)]
+    pub origin: Option<[f64; 3]>,
+    /// The generators' directions at the origin, X1,Y1,Z1:X2,Y2,Z2, projected onto the tangent
+    /// plane [default: x and y].
+    #[arg(long, value_parser = parse_directions)]
+    pub directions: Option<([f64; 3], [f64; 3])>,
+    /// Rods on the generators (offsets k·a) or between them ((k + 1/2)·a).
+    #[arg(long, value_enum, default_value_t = LayoutArg::On)]
+    pub layout: LayoutArg,
+    /// Locking angle, degrees: a rod stops where the net's cells close below it.
+    #[arg(long, default_value_t = DEFAULT_MIN_ANGLE_DEG)]
+    pub min_angle: f64,
+    /// Equal edges per segment between neighbouring crossings.
+    #[arg(long, default_value_t = super::DEFAULT_SUBDIVIDE)]
+    pub subdivide: usize,
+    #[arg(long, value_enum, default_value_t = JointArg::Ball)]
+    pub joint: JointArg,
+    /// Rod cross-section in metres: circle:r, ellipse:a,b or rectangle:w,h [default: a circle
+    /// of radius a/50].
+    #[arg(long, value_parser = parse_section)]
+    pub section: Option<SectionRatio>,
+    /// Young's modulus E, Pa.
+    #[arg(long, default_value_t = 1e9)]
+    pub young_modulus: f64,
+    #[arg(long, default_value_t = 0.3)]
+    pub poisson_ratio: f64,
+    /// Relative residual tolerance [default: automatic].
+    #[arg(long)]
+    pub tolerance: Option<f64>,
+    /// Write the footprint scene (RON) here.
+    #[arg(long)]
+    pub scene_out: Option<PathBuf>,
+    #[arg(long)]
+    pub json: Option<PathBuf>,
+    #[arg(long)]
+    pub obj: Option<PathBuf>,
+    /// Write the text report here.
+    #[arg(long)]
+    pub report: Option<PathBuf>,
+    /// Write the cut list (one row per rod: family, offset, length, crossing positions) here.
+    #[arg(long)]
+    pub footprint_csv: Option<PathBuf>,
+    /// Write the flat footprint to scale (SVG, millimetres) here.
+    #[arg(long)]
+    pub footprint_svg: Option<PathBuf>,
+    /// Write STEM-gridshell.{json,obj,txt} here (the default, into the current directory,
+    /// when no output option is given).
+    #[arg(long)]
+    pub out_dir: Option<PathBuf>,
+    #[arg(long)]
+    pub quiet: bool,
+    #[command(flatten)]
+    pub limits: super::LimitArgs,
+}
+
+fn parse_point(s: &str) -> Result<[f64; 3], String> {
+    let v: Vec<f64> = s
+        .split(',')
+        .map(|x| x.trim().parse::<f64>().ok().filter(|x| x.is_finite()))
+        .collect::<Option<_>>()
+        .ok_or_else(|| format!("expected X,Y,Z with finite numbers, got {s:?}"))?;
+    <[f64; 3]>::try_from(v).map_err(|_| format!("expected X,Y,Z, got {s:?}"))
+}
+
+fn parse_directions(s: &str) -> Result<([f64; 3], [f64; 3]), String> {
+    let (a, b) = s
+        .split_once(':')
+        .ok_or_else(|| format!("expected X1,Y1,Z1:X2,Y2,Z2, got {s:?}"))?;
+    Ok((parse_point(a)?, parse_point(b)?))
+}
+
+fn spec_of(a: &FitArgs) -> Result<FitSpec, String> {
+    let positive = |x: f64| x.is_finite() && x > 0.0;
+    if !positive(a.spacing) {
+        return Err(format!("--spacing must be positive, got {}", a.spacing));
+    }
+    if !(a.min_angle.is_finite() && a.min_angle > 0.0 && a.min_angle < 90.0) {
+        return Err(format!(
+            "--min-angle must lie in (0, 90) degrees, got {}",
+            a.min_angle
+        ));
+    }
+    if a.subdivide == 0 || a.subdivide > 64 {
+        return Err(format!(
+            "--subdivide must be in 1..=64, got {}",
+            a.subdivide
+        ));
+    }
+    if !(positive(a.young_modulus) && a.young_modulus <= crate::scene::validate::MAX_MAGNITUDE) {
+        return Err(format!(
+            "--young-modulus must be positive and finite, got {}",
+            a.young_modulus
+        ));
+    }
+    if !(a.poisson_ratio.is_finite() && a.poisson_ratio > -1.0 && a.poisson_ratio <= 0.5) {
+        return Err(format!(
+            "--poisson-ratio must lie in (-1, 0.5], got {}",
+            a.poisson_ratio
+        ));
+    }
+    if let Some(t) = a.tolerance.filter(|t| !positive(*t)) {
+        return Err(format!("--tolerance must be positive, got {t}"));
+    }
+    let section = a.section.map_or(
+        Section::Circle {
+            radius: a.spacing / 50.0,
+        },
+        |s| s.0,
+    );
+    if section.outer_radius() >= 0.5 * a.spacing {
+        return Err(format!(
+            "--section: rods {} m thick do not fit between crossings {} m apart",
+            2.0 * section.outer_radius(),
+            a.spacing
+        ));
+    }
+    Ok(FitSpec {
+        spacing: a.spacing,
+        origin: a.origin,
+        directions: a.directions,
+        layout: match a.layout {
+            LayoutArg::On => Layout::On,
+            LayoutArg::Between => Layout::Between,
+        },
+        min_angle_deg: a.min_angle,
+        subdivide: a.subdivide,
+        joint: match a.joint {
+            JointArg::Ball => JointChoice::Ball,
+            JointArg::Hinge => JointChoice::Hinge,
+            JointArg::Rigid => JointChoice::Rigid,
+            JointArg::Elastic => JointChoice::Elastic,
+        },
+        section,
+        young_modulus: a.young_modulus,
+        poisson_ratio: a.poisson_ratio,
+        tolerance: a.tolerance,
+        max_iterations: Solver::default().max_iterations,
+    })
+}
+
+struct Outputs {
+    json: Option<PathBuf>,
+    obj: Option<PathBuf>,
+    report: Option<PathBuf>,
+    dir: Option<PathBuf>,
+}
+
+fn outputs(a: &FitArgs) -> Result<Outputs, String> {
+    let explicit = a.json.is_some()
+        || a.obj.is_some()
+        || a.report.is_some()
+        || a.scene_out.is_some()
+        || a.footprint_csv.is_some()
+        || a.footprint_svg.is_some();
+    let dir = match (&a.out_dir, explicit) {
+        (Some(d), _) => Some(d.clone()),
+        (None, false) => Some(PathBuf::from(".")),
+        (None, true) => None,
+    };
+    if let Some(d) = dir.as_ref().filter(|d| d.exists() && !d.is_dir()) {
+        return Err(format!(
+            "--out-dir {}: exists and is not a directory",
+            d.display()
+        ));
+    }
+    let stem = a
+        .target
+        .file_stem()
+        .map_or("target".into(), |s| s.to_string_lossy().into_owned());
+    let mut out = Outputs {
+        json: a.json.clone(),
+        obj: a.obj.clone(),
+        report: a.report.clone(),
+        dir,
+    };
+    if let Some(d) = &out.dir {
+        out.json
+            .get_or_insert_with(|| d.join(format!("{stem}-gridshell.json")));
+        out.obj
+            .get_or_insert_with(|| d.join(format!("{stem}-gridshell.obj")));
+        out.report
+            .get_or_insert_with(|| d.join(format!("{stem}-gridshell.txt")));
+    }
+    Ok(out)
+}
+
+pub(super) fn run(a: FitArgs) -> i32 {
+    let spec = match spec_of(&a) {
+        Ok(s) => s,
+        Err(e) => return bad(e),
+    };
+    let out = match outputs(&a) {
+        Ok(o) => o,
+        Err(e) => return bad(e),
+    };
+    let list = given(&[
+        ("--scene-out", &a.scene_out),
+        ("--json", &out.json),
+        ("--obj", &out.obj),
+        ("--report", &out.report),
+        ("--footprint-csv", &a.footprint_csv),
+        ("--footprint-svg", &a.footprint_svg),
+    ]);
+    let creating = out.dir.as_deref().filter(|d| !d.is_dir());
+    if let Err(e) = check_outputs_creating(&list, &[a.target.as_path()], creating) {
+        return bad(e);
+    }
+    let surface = match Surface::load(&a.target, crate::scene::MAX_MESH_BYTES) {
+        Ok(s) => Arc::new(s),
+        Err(e) => return bad(e),
+    };
+    // The scene names the mesh by its absolute path, so that it reads wherever it is written.
+    let mesh_path = std::fs::canonicalize(&a.target)
+        .unwrap_or_else(|_| a.target.clone())
+        .display()
+        .to_string();
+    let tracker = progress::Tracker::begin(1, show_progress(a.quiet));
+    let result = job::run(&surface, &mesh_path, &spec, Some(tracker.hook()));
+    tracker.finish();
+    let run = match result {
+        Ok(r) => r,
+        Err(FitError::Net(e)) => return bad(format_args!("{}: {e}", a.target.display())),
+        Err(FitError::Scene(e)) => {
+            return bad(format_args!(
+                "the generated scene is invalid: {}: {}",
+                e.path(),
+                e.message
+            ))
+        }
+    };
+    if let Some(d) = creating {
+        if let Err(e) = std::fs::create_dir_all(d) {
+            return bad(format_args!("cannot create {}: {e}", d.display()));
+        }
+    }
+    let r = &run.results;
+    if !r.all_finite() {
+        eprintln!(
+            "error: the form finding produced non-finite values ({}); no results written",
+            diagnostic(&r.solver.message)
+        );
+        return EXIT_NOT_CONVERGED;
+    }
+    let summary = run.summary();
+    let rods = run.footprint_rods();
+    let mut files: Vec<(PathBuf, Vec<u8>)> = Vec::new();
+    let mut add = |p: &Option<PathBuf>, bytes: Vec<u8>| {
+        if let Some(p) = p {
+            files.push((p.clone(), bytes));
+        }
+    };
+    add(&a.scene_out, scene_text(&run, &a.target).into_bytes());
+    add(
+        &out.json,
+        serde_json::to_vec_pretty(r).expect("results serialize"),
+    );
+    add(&out.obj, obj::to_obj(r).into_bytes());
+    add(&out.report, summary.clone().into_bytes());
+    add(&a.footprint_csv, fab::cut_list_csv(&rods).into_bytes());
+    add(&a.footprint_svg, fab::footprint_svg(&rods).into_bytes());
+    if let Err((p, e)) = atomic::write_all(&files) {
+        return bad(format_args!("cannot write {}: {e}", p.display()));
+    }
+    if !a.quiet {
+        print!("{summary}");
+    }
+    if r.converged {
+        EXIT_OK
+    } else {
+        eprintln!(
+            "rodnet: form finding did not converge: {}",
+            diagnostic(&r.solver.message)
+        );
+        EXIT_NOT_CONVERGED
+    }
+}
+
+fn scene_text(run: &job::FitRun, target: &Path) -> String {
+    format!(
+        "// Footprint of a Chebyshev-net gridshell fitted to {} by `rodnet gridshell fit`:\n\
+         // spacing {} m, {} rods, {} joints. The rods lie flat in the footprint plane and\n\
+         // `move_to` brings each rod end onto its boundary point; `buckle_toward` picks the\n\
+         // surface's side (docs/gridshell.md).\n{}\n",
+        target.display(),
+        run.spec.spacing,
+        run.footprint.scene.rods.len(),
+        run.footprint.scene.joints.len(),
+        to_ron(&run.footprint.scene)
+    )
+}
