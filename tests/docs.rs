@@ -169,6 +169,23 @@ fn own_contract_names_every_results_key() {
         .chain([gridshell.display().to_string()])
         .collect(),
     );
+    // A gridshell fitted to a mesh: the mesh target block and the net.
+    let mesh = d.join("cap.obj");
+    std::fs::write(
+        &mesh,
+        rodnet::surface::shapes::to_obj(&rodnet::surface::shapes::paraboloid(1.0, 0.5, 12)),
+    )
+    .unwrap();
+    runs.push(vec![
+        "gridshell".into(),
+        "fit".into(),
+        mesh.display().to_string(),
+        "--spacing".into(),
+        "0.3".into(),
+        "--quiet".into(),
+        "--json".into(),
+        d.join("fit.json").display().to_string(),
+    ]);
     let mut keys = std::collections::BTreeSet::new();
     for args in &runs {
         let out = Command::new(env!("CARGO_BIN_EXE_rodnet"))
@@ -193,6 +210,8 @@ fn own_contract_names_every_results_key() {
         "target",
         "gridshell",
         "bound",
+        "mean_signed_distance",
+        "min_angle_deg",
     ] {
         assert!(keys.contains(k), "no run produced the key {k}");
     }

@@ -127,6 +127,15 @@ pub fn footprint(
         spec.layout,
         net::DEFAULT_STEPS,
     );
+    let finite = |p: &[f64; 3]| p.iter().all(|x| x.is_finite());
+    if !(net.crossings.iter().all(|c| finite(&c.point))
+        && net
+            .rods
+            .iter()
+            .all(|r| r.ends.iter().all(|e| finite(&e.point))))
+    {
+        return Err("the net construction produced non-finite points; no net written".into());
+    }
     let plane = plane(surface, &net);
     let mut names: BTreeMap<usize, String> = BTreeMap::new();
     let (mut count_u, mut count_v) = (0, 0);

@@ -454,4 +454,58 @@ mod tests {
         let (dx, dl) = last.unwrap();
         assert!(dx < 1.2e-4 && dl < 1.2e-4, "{dx} {dl}");
     }
+
+    /// Hazzidakis on every cell of spacing a of the compass net of a hemisphere mesh: the
+    /// Gaussian curvature integrated over the cell, K·area = area/R², equals 2π minus its
+    /// corner angles, ω10 + ω01 − ω00 − ω11. The cell sides are a along both families by
+    /// construction (m chords of a/m); the test checks the curvature they enclose.
+    #[test]
+    fn net_cells_obey_hazzidakis() {
+        let s = Surface::from_obj("h.obj", &shapes::to_obj(&shapes::hemisphere(1.0, 128))).unwrap();
+        let seed = Seed {
+            origin: [0.0, 0.0, 1.0],
+            d1: [1.0, 0.0, 0.0],
+            d2: [0.0, 1.0, 0.0],
+            min_angle: 10f64.to_radians(),
+        };
+        let (a, m) = (std::f64::consts::PI / 13.0, 16i64);
+        let net = compass::build(&s, &seed, a, m as usize, 1000);
+        let (mut worst, mut cells) = (0.0f64, 0);
+        for cj in -6..6 {
+            for ci in -6..6 {
+                let corner = |di: i64, dj: i64| ((ci + di) * m, (cj + dj) * m);
+                let inside = (0..=m)
+                    .all(|x| (0..=m).all(|y| net.at(ci * m + x, cj * m + y).is_some()))
+                    && [(0, 0), (1, 0), (0, 1), (1, 1)].iter().all(|&(di, dj)| {
+                        let (i, j) = corner(di, dj);
+                        [(1, 0), (-1, 0), (0, 1), (0, -1)]
+                            .iter()
+                            .all(|(x, y)| net.at(i + x, j + y).is_some())
+                    });
+                if !inside {
+                    continue;
+                }
+                let mut area = 0.0;
+                for y in 0..m {
+                    for x in 0..m {
+                        let p =
+                            |dx: i64, dy: i64| net.at(ci * m + x + dx, cj * m + y + dy).unwrap();
+                        let d1 = sub(p(1, 1), p(0, 0));
+                        let d2 = sub(p(0, 1), p(1, 0));
+                        area += 0.5 * norm(cross(d1, d2));
+                    }
+                }
+                let w = |di: i64, dj: i64| {
+                    let (i, j) = corner(di, dj);
+                    angle(&net, i, j)
+                };
+                let gauss = w(1, 0) + w(0, 1) - w(0, 0) - w(1, 1);
+                worst = worst.max((gauss - area).abs() / area);
+                cells += 1;
+            }
+        }
+        println!("{cells} cells, worst relative Hazzidakis residual {worst:.3e}");
+        assert!(cells >= 60, "{cells}");
+        assert!(worst < 5e-3, "{worst}");
+    }
 }
