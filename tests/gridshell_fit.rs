@@ -303,3 +303,46 @@ fn bad_meshes_and_options_are_refused_with_their_place() {
         "{err}"
     );
 }
+
+/// Where the net shears past the locking angle, the rods stop there, pinned, and the report
+/// says which and where; the shell still forms.
+#[test]
+fn rods_stop_where_the_net_locks() {
+    let s = surface("hemisphere", &shapes::hemisphere(1.0, 32));
+    let mut sp = spec(std::f64::consts::PI / 13.0, Layout::Between);
+    sp.min_angle_deg = 50.0;
+    let run = fit(&s, &sp);
+    let stops = run.stops();
+    assert!(!stops.is_empty());
+    for line in &stops {
+        assert!(
+            line.contains("net locks") || line.contains("stopped first"),
+            "{line}"
+        );
+    }
+    // Without the lock, every rod reaches the equator with angles down to 41°.
+    let free = fit(&s, &spec(std::f64::consts::PI / 13.0, Layout::Between));
+    assert!(free.stops().is_empty());
+    assert!(free.net_block.min_angle_deg < 42.0);
+    let b = &run.net_block;
+    assert!(b.min_angle_deg > 49.0 && b.max_angle_deg < 131.0, "{b:?}");
+    assert!(b.joints < free.net_block.joints);
+    assert!(run.results.converged && run.report.stable);
+    let report = run.summary();
+    assert!(report.contains("stop inside the surface"), "{report}");
+    // Every stopped end is pinned where the rod stops, off the equator.
+    for (rod, &ri) in run.footprint.scene.rods.iter().zip(&run.footprint.rods) {
+        let r = &run.footprint.net.rods[ri];
+        for (k, e) in r.ends.iter().enumerate() {
+            let vertex = if k == 0 { 0 } else { rod.points.len() - 1 };
+            let pin = run
+                .footprint
+                .scene
+                .supports
+                .iter()
+                .find(|p| p.rod == rod.name && p.vertex == vertex)
+                .unwrap();
+            assert_eq!(pin.move_to, Some(e.point));
+        }
+    }
+}
