@@ -92,6 +92,56 @@ pub fn solve_scene(scene: &Scene, settings: &NewtonSettings) -> Result<Solution,
     )
 }
 
+/// Newton iterations [`solve_scene_from`] gives the start before it solves from rest.
+pub const RESTART_ITERATIONS: usize = 200;
+
+/// Why [`solve_scene_from`] could not start.
+#[derive(Debug)]
+pub enum FromError {
+    Scene(FieldError),
+    /// The initial state does not fit the scene.
+    Initial(String),
+}
+
+/// Solves a scene from an earlier equilibrium of it (`rodnet solve --initial`): Newton at the
+/// full loads and motions from that state. Should Newton fail from there, the scene is solved
+/// from rest as usual and the report's message says so.
+pub fn solve_scene_from(
+    scene: &Scene,
+    settings: &NewtonSettings,
+    initial: &[crate::network::initial::RodState],
+) -> Result<Solution, FromError> {
+    let mut network = build_within_limit(scene, settings.ordering).map_err(FromError::Scene)?;
+    let rest = network.model.state.clone();
+    crate::network::initial::place(&mut network, initial).map_err(FromError::Initial)?;
+    // A start that needs more than this is no restart: the solve from rest is then the better
+    // path (a start that violates the scene's bounds, a load that changes the shape entirely).
+    let budget = settings.max_iterations.min(RESTART_ITERATIONS);
+    let direct = crate::network::solve(
+        &mut network.model,
+        &settings
+            .clone()
+            .equilibrate_only(true)
+            .max_iterations(budget),
+    );
+    let report = if direct.converged {
+        direct
+    } else {
+        network.model.state = rest;
+        let mut r =
+            crate::network::solve_toward(&mut network, settings, scene.solver.buckle_toward);
+        // The failed start's iterations are part of the run's cost.
+        r.add_work(&direct);
+        let why = direct.message.as_deref().unwrap_or("no convergence");
+        r.message = Some(match r.message.take() {
+            Some(m) => format!("from the initial state: {why}; solved from rest: {m}"),
+            None => format!("from the initial state: {why}; solved from rest instead"),
+        });
+        r
+    };
+    Ok(finish(network, scene, report, |_, _| {}))
+}
+
 /// Builds a validated scene, solves it with `solve`, measures the equilibrium (then lets
 /// `measure` add to it) and forms the results.
 pub fn run(

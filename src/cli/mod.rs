@@ -69,6 +69,11 @@ pub enum Command {
         /// Write the --modes shapes here, one OBJ object per mode.
         #[arg(long, value_name = "OUT.obj", requires = "modes")]
         modes_obj: Option<PathBuf>,
+        /// Start from an earlier results JSON of the same scene (same rods and subdivision):
+        /// Newton at the full loads and motions from its state, e.g. a second stage with a load
+        /// added to a form-found shell. Falls back to the solve from rest if Newton fails there.
+        #[arg(long, value_name = "RESULTS.json")]
+        initial: Option<PathBuf>,
         /// No progress output.
         #[arg(long)]
         quiet: bool,
@@ -121,6 +126,7 @@ pub fn run(cli: Cli) -> i32 {
             forces_csv,
             modes,
             modes_obj,
+            initial,
             quiet,
             network,
             limits,
@@ -135,6 +141,7 @@ pub fn run(cli: Cli) -> i32 {
                     forces_csv,
                     modes: modes.map(|k| k as usize),
                     modes_obj,
+                    initial,
                 },
                 quiet,
                 &network,

@@ -27,7 +27,7 @@ pub struct PlotArgs {
 }
 
 /// Results JSON files larger than this are refused before reading, bytes.
-const MAX_JSON_BYTES: u64 = 1 << 30;
+pub(super) const MAX_JSON_BYTES: u64 = 1 << 30;
 
 pub fn run(a: &PlotArgs) -> i32 {
     if let Err(e) = check_outputs(&[("--output", &a.output)], &[&a.result]) {

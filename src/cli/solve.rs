@@ -19,6 +19,9 @@ pub(super) struct Outputs {
     /// The eigen-analysis asked for (`--modes K`) and where its mode shapes go.
     pub modes: Option<usize>,
     pub modes_obj: Option<PathBuf>,
+    /// `--initial`: an earlier results JSON of the same scene to start from (an input, checked
+    /// with the outputs so that no output replaces it).
+    pub initial: Option<PathBuf>,
 }
 
 impl Outputs {
@@ -71,7 +74,9 @@ pub(super) fn run(
 }
 
 fn solve(path: &Path, outputs: Outputs, quiet: bool) -> i32 {
-    if let Err(e) = check_outputs(&outputs.list(), &[path]) {
+    let mut inputs = vec![path];
+    inputs.extend(outputs.initial.as_deref());
+    if let Err(e) = check_outputs(&outputs.list(), &inputs) {
         return bad(e);
     }
     let (sc, src) = match scene::load(path) {
@@ -91,7 +96,9 @@ fn solve_network(path: &Path, args: &NetworkArgs, outputs: Outputs, quiet: bool)
     if let Some(p) = &args.scene_out {
         all.push(("--scene-out", p));
     }
-    if let Err(e) = check_outputs(&all, &[path]) {
+    let mut inputs = vec![path];
+    inputs.extend(outputs.initial.as_deref());
+    if let Err(e) = check_outputs(&all, &inputs) {
         return bad(e);
     }
     let net = match network::load(path, args) {
@@ -126,11 +133,20 @@ fn solve_and_write(label: &str, sc: &Scene, source: &Source, outputs: Outputs, q
     let mut settings = job::settings_of(sc);
     let tracker = progress::Tracker::begin(settings.load_steps, show_progress(quiet));
     settings.progress = Some(tracker.hook());
-    let result = job::solve_scene(sc, &settings);
+    let result = match &outputs.initial {
+        None => job::solve_scene(sc, &settings).map_err(|e| source.describe(&e)),
+        Some(f) => match read_initial(f) {
+            Ok(rods) => job::solve_scene_from(sc, &settings, &rods).map_err(|e| match e {
+                job::FromError::Scene(e) => source.describe(&e),
+                job::FromError::Initial(m) => format!("--initial {}: {m}", f.display()),
+            }),
+            Err(e) => Err(e),
+        },
+    };
     let seen = tracker.finish();
     let mut sol = match result {
         Ok(s) => s,
-        Err(e) => return bad(source.describe(&e)),
+        Err(e) => return bad(e),
     };
     let modes = match outputs.modes {
         Some(k) if sol.results.all_finite() => match job::analyse_modes(&mut sol, k) {
@@ -223,4 +239,11 @@ fn solve_and_write(label: &str, sc: &Scene, source: &Source, outputs: Outputs, q
         );
         EXIT_NOT_CONVERGED
     }
+}
+
+/// The rods of an earlier results JSON (`--initial`).
+fn read_initial(f: &Path) -> Result<Vec<crate::network::initial::RodState>, String> {
+    let text = scene::read_text(f, "initial results", super::plot::MAX_JSON_BYTES)
+        .map_err(|e| e.to_string())?;
+    crate::io::initial::parse(&text).map_err(|e| format!("--initial {}: {e}", f.display()))
 }

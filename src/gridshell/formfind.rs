@@ -34,7 +34,7 @@
 use std::time::{Duration, Instant};
 
 use crate::gridshell::chebyshev::HemisphereNet;
-use crate::math::vec::{add, cross, dot, norm, normalize, scalef, sub};
+use crate::math::vec::{add, normalize, rotation_between, sub};
 use crate::network::model::Model;
 use crate::network::{Network, NetworkProblem};
 use crate::solver::{self, NewtonReport, NewtonSettings};
@@ -268,14 +268,4 @@ fn merge(total: &mut NewtonReport, r: &NewtonReport) {
     total.tolerance = r.tolerance;
     total.stopped_at_floor = r.stopped_at_floor;
     total.stopped.clone_from(&r.stopped);
-}
-
-/// Rotation vector of the smallest rotation taking the unit vector `a` to the unit vector `b`.
-fn rotation_between(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
-    let axis = cross(a, b);
-    let s = norm(axis);
-    if s == 0.0 {
-        return [0.0; 3];
-    }
-    scalef(axis, s.atan2(dot(a, b)) / s)
 }

@@ -4,6 +4,7 @@ pub mod csv;
 pub mod curve_plot;
 pub mod footprint;
 pub mod indent;
+pub mod initial;
 pub mod obj;
 pub mod plot;
 pub mod results;

@@ -172,6 +172,16 @@ pub fn any_perpendicular(t: [f64; 3]) -> [f64; 3] {
     normalize(cross(cross(t, trial), t))
 }
 
+/// Rotation vector of the smallest rotation taking the unit vector `a` to the unit vector `b`.
+pub fn rotation_between(a: [f64; 3], b: [f64; 3]) -> [f64; 3] {
+    let axis = cross(a, b);
+    let s = norm(axis);
+    if s == 0.0 {
+        return [0.0; 3];
+    }
+    scalef(axis, s.atan2(dot(a, b)) / s)
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;

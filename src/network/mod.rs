@@ -10,6 +10,7 @@ pub mod contact;
 pub mod equilibrium;
 pub mod indent;
 pub mod info;
+pub mod initial;
 pub mod joint;
 pub mod mechanism;
 pub mod model;

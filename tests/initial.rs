@@ -1,0 +1,211 @@
+//! `rodnet solve --initial RESULTS.json`: restarts and staging from an earlier equilibrium.
+
+use std::path::{Path, PathBuf};
+use std::process::Command;
+
+fn rodnet() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_rodnet"))
+}
+
+fn temp(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("rodnet-initial-{name}-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+fn json(p: &Path) -> serde_json::Value {
+    serde_json::from_slice(&std::fs::read(p).unwrap()).unwrap()
+}
+
+fn solve(scene: &Path, out: &Path, initial: Option<&Path>) -> std::process::Output {
+    let mut c = rodnet();
+    c.arg("solve")
+        .arg(scene)
+        .args(["--quiet", "--json"])
+        .arg(out);
+    if let Some(i) = initial {
+        c.arg("--initial").arg(i);
+    }
+    c.output().unwrap()
+}
+
+fn max_point_gap(a: &serde_json::Value, b: &serde_json::Value) -> f64 {
+    let mut gap: f64 = 0.0;
+    for (ra, rb) in a["rods"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .zip(b["rods"].as_array().unwrap())
+    {
+        for (pa, pb) in ra["points"]
+            .as_array()
+            .unwrap()
+            .iter()
+            .zip(rb["points"].as_array().unwrap())
+        {
+            for k in 0..3 {
+                gap = gap.max((pa[k].as_f64().unwrap() - pb[k].as_f64().unwrap()).abs());
+            }
+        }
+    }
+    gap
+}
+
+/// A converged result restarts in at most two iterations to the same state (the twist angles
+/// are relative to reference frames that the restart transports in one step, not along the
+/// path, so they are not exactly the solve's own).
+#[test]
+fn a_solved_scene_restarts_where_it_stopped() {
+    let d = temp("restart");
+    let scene = Path::new("networks/l_frame.ron");
+    let (a, b) = (d.join("a.json"), d.join("b.json"));
+    assert!(solve(scene, &a, None).status.success());
+    let out = solve(scene, &b, Some(&a));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let (ja, jb) = (json(&a), json(&b));
+    assert!(
+        jb["iterations"].as_u64().unwrap() <= 2,
+        "{}",
+        jb["iterations"]
+    );
+    assert!(max_point_gap(&ja, &jb) < 1e-9);
+}
+
+/// Staging: a gridshell form-found from its footprint, then loaded by its own weight as a
+/// second stage from that shell, reaches the state the loaded scene reaches from rest, in far
+/// fewer iterations.
+#[test]
+fn a_form_found_shell_takes_its_weight_as_a_second_stage() {
+    let d = temp("stage");
+    let mesh = d.join("cap.obj");
+    std::fs::write(
+        &mesh,
+        rodnet::surface::shapes::to_obj(&rodnet::surface::shapes::paraboloid(1.0, 0.5, 24)),
+    )
+    .unwrap();
+    let stage1 = d.join("stage1.json");
+    let out = rodnet()
+        .args(["gridshell", "fit"])
+        .arg(&mesh)
+        .args(["--spacing", "0.25", "--quiet", "--json"])
+        .arg(&stage1)
+        .arg("--scene-out")
+        .arg(d.join("fp.ron"))
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    // Stage 2: the same scene with steel's density and gravity.
+    let text = std::fs::read_to_string(d.join("fp.ron")).unwrap();
+    assert!(text.contains("density: 0.0") && text.contains("loads: []"));
+    let loaded = text
+        .replace("density: 0.0", "density: 7850.0")
+        .replace("loads: []", "loads: [Gravity(g: (0.0, 0.0, -9.81))]");
+    let scene2 = d.join("stage2.ron");
+    std::fs::write(&scene2, loaded).unwrap();
+    let (staged, direct) = (d.join("staged.json"), d.join("direct.json"));
+    let out = solve(&scene2, &staged, Some(&stage1));
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let out = solve(&scene2, &direct, None);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let (s, r) = (json(&staged), json(&direct));
+    let e = |v: &serde_json::Value| v["energy"]["total"].as_f64().unwrap();
+    assert!(
+        (e(&s) - e(&r)).abs() < 1e-6 * e(&r).abs(),
+        "{} {}",
+        e(&s),
+        e(&r)
+    );
+    assert!(max_point_gap(&s, &r) < 1e-6);
+    let (its_s, its_r) = (
+        s["iterations"].as_u64().unwrap(),
+        r["iterations"].as_u64().unwrap(),
+    );
+    println!("staged {its_s} iterations, from rest {its_r}");
+    assert!(its_s * 3 <= its_r, "{its_s} {its_r}");
+    // The shell sagged under its weight.
+    assert!(max_point_gap(&s, &json(&stage1)) > 1e-6);
+}
+
+#[test]
+fn results_of_another_scene_are_refused_before_solving() {
+    let d = temp("bad");
+    let a = d.join("a.json");
+    assert!(solve(Path::new("networks/cantilever.ron"), &a, None)
+        .status
+        .success());
+    // The cantilever at another subdivision.
+    let coarser = d.join("coarser.ron");
+    std::fs::write(
+        &coarser,
+        std::fs::read_to_string("networks/cantilever.ron")
+            .unwrap()
+            .replace("subdivide: 40", "subdivide: 20"),
+    )
+    .unwrap();
+    for (scene, want) in [
+        (
+            Path::new("networks/l_frame.ron"),
+            "is not in the initial results",
+        ),
+        (coarser.as_path(), "the same scene"),
+    ] {
+        let out = solve(scene, &d.join("x.json"), Some(&a));
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{scene:?}: {err}");
+        assert!(
+            err.contains(want) && err.contains("--initial"),
+            "{scene:?}: {err}"
+        );
+        assert!(!d.join("x.json").exists());
+    }
+    let junk = d.join("junk.json");
+    std::fs::write(&junk, "{\"converged\": true}").unwrap();
+    let out = solve(
+        Path::new("networks/cantilever.ron"),
+        &d.join("x.json"),
+        Some(&junk),
+    );
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(err.contains("not a rodnet results JSON"), "{err}");
+    // A start that violates the scene's stop: Newton gives up on it within the restart budget
+    // and the scene is solved from rest, which the message says.
+    let out = solve(
+        Path::new("networks/cantilever_stop.ron"),
+        &d.join("y.json"),
+        Some(&a),
+    );
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let y = json(&d.join("y.json"));
+    assert!(y["converged"].as_bool().unwrap());
+    assert!(
+        y["iterations"].as_u64().unwrap() > 200,
+        "the failed start's work counts"
+    );
+    let message = y["solver"]["message"].as_str().unwrap();
+    assert!(message.contains("solved from rest"), "{message}");
+    // The initial results are an input: no output may replace them.
+    let out = solve(Path::new("networks/cantilever.ron"), &a, Some(&a));
+    assert_eq!(out.status.code(), Some(2));
+}
