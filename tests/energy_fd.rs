@@ -8,7 +8,7 @@ mod common;
 use common::Rng;
 use rodnet::energy::{
     bend::Bend, frame_bend::FrameBend, frame_twist::FrameTwist, point_load::PointLoad,
-    stretch::Stretch, torque::Torque, twist::Twist, Term,
+    spring::Spring, stretch::Stretch, torque::Torque, twist::Twist, Term,
 };
 use rodnet::math::vec::*;
 use rodnet::math::HD;
@@ -347,6 +347,20 @@ fn external_loads_fd() {
         torque: rng.vec3(3.0),
     };
     check(&t, &st, rng.vec3(0.5), "torque");
+    // An elastic support with anisotropic stiffness and a moving anchor (λ = 0.7), far from
+    // and close to its anchor.
+    let sp = Spring {
+        vars: [0, 1, 2],
+        stiffness: [3.0e4, 0.0, 7.5e2],
+        anchor: [rng.vec3(1.0), rng.vec3(1.0)],
+    };
+    check(&sp, &st, rng.vec3(2.0), "spring");
+    check(
+        &sp,
+        &st,
+        add(sp.anchor_at(0.7), [1e-7, -2e-7, 3e-7]),
+        "spring at its anchor",
+    );
     // The load's gradient is exactly −λ f.
     let g = f.eval(&st, &HD::<3>::vars(&[0.1, 0.2, 0.3])).g;
     for (gk, fk) in g.iter().zip(f.force) {

@@ -10,6 +10,7 @@ pub mod joint_rotation;
 pub mod joint_translation;
 pub mod point_load;
 pub mod registry;
+pub mod spring;
 pub mod stretch;
 pub mod torque;
 pub mod twist;
@@ -24,6 +25,8 @@ pub enum Category {
     Bend,
     Twist,
     Joints,
+    /// Elastic supports (springs to the ground).
+    Supports,
     External,
 }
 

@@ -5,8 +5,8 @@
 
 use super::{
     bend::Bend, frame_bend::FrameBend, frame_twist::FrameTwist, joint_rotation::JointRotation,
-    joint_translation::JointTranslation, point_load::PointLoad, stretch::Stretch, torque::Torque,
-    twist::Twist, Term,
+    joint_translation::JointTranslation, point_load::PointLoad, spring::Spring, stretch::Stretch,
+    torque::Torque, twist::Twist, Term,
 };
 
 /// Something done to every kind of term in turn; `kind` is the kind's index in [`Terms::NAMES`].
@@ -48,6 +48,7 @@ term_kinds! {
     frame_twist: FrameTwist = 11,
     joint_rotation: JointRotation = 6,
     joint_translation: JointTranslation = 6,
+    springs: Spring = 3,
     loads: PointLoad = 3,
     torques: Torque = 3,
 }

@@ -18,6 +18,9 @@ pub struct EnergyJson {
     pub bend: f64,
     pub twist: f64,
     pub joints: f64,
+    /// Elastic supports (`Spring`), J (extension).
+    #[serde(default)]
+    pub supports: f64,
     pub external: f64,
 }
 
@@ -29,6 +32,7 @@ impl From<EnergyParts> for EnergyJson {
             bend: p.bend,
             twist: p.twist,
             joints: p.joints,
+            supports: p.supports,
             external: p.external,
         }
     }

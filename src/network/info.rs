@@ -34,6 +34,8 @@ pub struct SupportInfo {
     pub node: usize,
     /// The vertex frame a clamp fixes (its reaction moment).
     pub frame: Option<usize>,
+    /// An elastic support: its index in `Terms::springs` (its reaction is its spring force).
+    pub spring: Option<usize>,
 }
 
 /// The node held in place to remove the rigid translations of an unsupported structure.

@@ -20,12 +20,14 @@ pub struct EnergyParts {
     pub bend: f64,
     pub twist: f64,
     pub joints: f64,
+    /// Elastic supports.
+    pub supports: f64,
     pub external: f64,
 }
 
 impl EnergyParts {
     pub fn total(&self) -> f64 {
-        self.stretch + self.bend + self.twist + self.joints + self.external
+        self.stretch + self.bend + self.twist + self.joints + self.supports + self.external
     }
     /// Sums kinds by category, in the given order.
     pub fn of(kinds: &[KindEnergy]) -> EnergyParts {
@@ -42,6 +44,7 @@ impl EnergyParts {
             Category::Bend => self.bend += e,
             Category::Twist => self.twist += e,
             Category::Joints => self.joints += e,
+            Category::Supports => self.supports += e,
             Category::External => self.external += e,
         }
     }
@@ -354,6 +357,11 @@ impl Model {
         let external = self.count_of(Category::External);
         external == 0
             && self.prescribed.iter().all(|p| p.start == p.end)
+            && self
+                .terms
+                .springs
+                .iter()
+                .all(|s| s.anchor[0] == s.anchor[1])
             && self
                 .prescribed_rotations
                 .iter()

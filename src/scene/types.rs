@@ -191,6 +191,11 @@ pub enum SupportKind {
     Roller {
         normal: [f64; 3],
     },
+    /// Springs along the world axes to the node's rest position (or its `move_to`), N/m; a
+    /// zero stiffness leaves that direction free.
+    Spring {
+        stiffness: [f64; 3],
+    },
 }
 
 impl SupportKind {

@@ -54,7 +54,10 @@ pub fn build(scene: &Scene) -> Result<Network, FieldError> {
         load_factor: 0.0,
     };
     let mut terms = terms::elastic(&net, &joined, &layout, &mut state, &mut fixed);
-    let driven = !supported.prescribed.is_empty() || !supported.rotations.is_empty();
+    let driven = !supported.prescribed.is_empty()
+        || !supported.rotations.is_empty()
+        || supported.springs.iter().any(|s| s.anchor[0] != s.anchor[1]);
+    terms.springs = supported.springs;
     let force_scale = loads::apply(
         scene,
         &rest,

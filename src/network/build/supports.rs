@@ -5,6 +5,7 @@ use std::collections::HashMap;
 
 use super::geometry::Rest;
 use super::nodes::Numbered;
+use crate::energy::spring::Spring;
 use crate::network::info::SupportInfo;
 use crate::network::joint::PortTable;
 use crate::network::model::{Prescribed, PrescribedRotation};
@@ -14,6 +15,8 @@ use crate::variables::DofLayout;
 
 pub struct Supported {
     pub prescribed: Vec<Prescribed>,
+    /// Elastic supports: their energy terms.
+    pub springs: Vec<Spring>,
     pub rotations: Vec<PrescribedRotation>,
     pub infos: Vec<SupportInfo>,
 }
@@ -27,6 +30,7 @@ pub fn apply(
 ) -> Result<Supported, FieldError> {
     let mut out = Supported {
         prescribed: Vec::new(),
+        springs: Vec::new(),
         rotations: Vec::new(),
         infos: Vec::new(),
     };
@@ -35,6 +39,24 @@ pub fn apply(
     for (si, s) in rest.scene.supports.iter().enumerate() {
         let (r, rnode) = rest.site(&s.rod, s.vertex);
         let node = net.rods[r].nodes[rnode];
+        if let SupportKind::Spring { stiffness } = s.kind {
+            // A spring holds nothing: its node stays free, tied to an anchor that moves with
+            // the load factor from the rest position to `move_to`.
+            let rest_pos = net.rest_pos[node];
+            out.springs.push(Spring {
+                vars: [0, 1, 2].map(|k| layout.node_coord(node, k)),
+                stiffness,
+                anchor: [rest_pos, s.move_to.unwrap_or(rest_pos)],
+            });
+            out.infos.push(SupportInfo {
+                rod: s.rod.clone(),
+                vertex: s.vertex,
+                node,
+                frame: None,
+                spring: Some(out.springs.len() - 1),
+            });
+            continue;
+        }
         // A Roller holds (and moves) one coordinate; Pins and Clamps all three.
         let held: Vec<usize> = match s.kind.roller_axis() {
             Some(k) => vec![k],
@@ -66,7 +88,7 @@ pub fn apply(
                 .port_of
                 .get(&(r, rnode))
                 .map(|&p| table.ports[p].frame),
-            SupportKind::Pin | SupportKind::Roller { .. } => None,
+            SupportKind::Pin | SupportKind::Roller { .. } | SupportKind::Spring { .. } => None,
         };
         if let Some(f) = frame {
             // Clamps on one frame (one rod vertex twice, or rods of one Rigid or Hinge joint)
@@ -99,6 +121,7 @@ pub fn apply(
             vertex: s.vertex,
             node,
             frame,
+            spring: None,
         });
     }
     Ok(out)

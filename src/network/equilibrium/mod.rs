@@ -143,6 +143,14 @@ impl Equilibrium {
             .supports
             .iter()
             .map(|s| {
+                if let Some(k) = s.spring {
+                    // A spring's reaction is its own force; the node is free, so it takes no
+                    // share of a fixed node's gradient.
+                    let sp = &m.terms.springs[k];
+                    let force = sp.force(m.position(s.node), m.state.load_factor);
+                    let moment = [0.0; 3];
+                    return (s.rod.clone(), s.vertex, Reaction { force, moment });
+                }
                 let force = match node_taken.insert(s.node) {
                     true => m.layout.node(s.node).map(|v| full[v]),
                     false => [0.0; 3],

@@ -56,7 +56,7 @@ impl TermVisitor for ByRod<'_> {
                 Category::Stretch => &mut r.stretch,
                 Category::Bend => &mut r.bend,
                 Category::Twist => &mut r.twist,
-                Category::Joints | Category::External => continue,
+                Category::Joints | Category::Supports | Category::External => continue,
             };
             *slot += t.energy(self.st);
         }

@@ -40,6 +40,19 @@ pub(super) fn supports(s: &Scene, rods: &RodIndex, in_joint: &InJoint) -> Result
                 return err("move_to", format!("must be finite, got {t:?}"));
             }
         }
+        if let SupportKind::Spring { stiffness } = sp.kind {
+            let ok = stiffness.iter().all(|k| k.is_finite() && *k >= 0.0)
+                && stiffness.iter().any(|k| *k > 0.0)
+                && stiffness.iter().all(|k| *k <= super::MAX_MAGNITUDE);
+            if !ok {
+                return err(
+                    "kind",
+                    format!(
+                        "a Spring's stiffness (N/m along x, y, z) must be finite, non-negative                          and not all zero, got {stiffness:?}"
+                    ),
+                );
+            }
+        }
         if let SupportKind::Roller { normal } = sp.kind {
             if !finite3(&normal) || sp.kind.roller_axis().is_none() {
                 return err(
