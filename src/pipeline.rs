@@ -219,3 +219,38 @@ pub fn modes_obj(network: &Network, labels: &[String], modes: &[Vec<f64>]) -> St
 
 /// Largest node motion of a drawn mode shape, over the bounding-box diagonal.
 pub const MODE_AMPLITUDE: f64 = 0.1;
+
+/// The equilibria of a scene that pushes along its lowest modes reach (`rodnet states`), each
+/// with its results; the first is the scene's own solve.
+pub fn states(
+    scene: &Scene,
+    settings: &NewtonSettings,
+    max: usize,
+) -> Result<Vec<(crate::network::states::Found, Results)>, FromError> {
+    let mut network = build_within_limit(scene, settings.ordering).map_err(FromError::Scene)?;
+    if network.model.contact.is_some() {
+        return Err(FromError::Initial(
+            "states does not handle contact or bounds yet (its eigen-analysis would have to              hold the active constraints)"
+                .into(),
+        ));
+    }
+    let rest = network.model.state.clone();
+    let first = crate::network::solve_toward(&mut network, settings, scene.solver.buckle_toward);
+    if !first.converged {
+        let why = first.message.clone().unwrap_or_default();
+        return Err(FromError::Initial(format!(
+            "the scene's own solve did not converge ({why}): no state to search from"
+        )));
+    }
+    let found = crate::network::states::search(&mut network, settings, first, &rest, max)
+        .map_err(FromError::Initial)?;
+    Ok(found
+        .into_iter()
+        .map(|f| {
+            let mut net = network.clone();
+            net.model.state = f.state.clone();
+            let sol = finish(net, scene, f.report.clone(), |_, _| {});
+            (f, sol.results)
+        })
+        .collect())
+}

@@ -11,6 +11,7 @@ mod output;
 mod plot;
 pub mod progress;
 mod solve;
+mod states;
 mod study;
 
 use std::path::PathBuf;
@@ -88,6 +89,9 @@ pub enum Command {
     /// Indentation: solve the scene, then push one point by displacement control; its linear
     /// stiffness, the force–depth curve and its limit points.
     Indent(IndentArgs),
+    /// Multiple equilibria: from the scene's equilibrium, pushes along the lowest eigenmodes
+    /// settled by Newton; each state's energy, stability and index (states.json) and results.
+    States(states::StatesArgs),
     /// Draw a results JSON as a PNG: orthographic views, rods coloured by bending stress.
     Plot(PlotArgs),
     /// Elastic gridshells: generate, form-find and compare with the analytic shape.
@@ -166,6 +170,10 @@ pub fn run(cli: Cli) -> i32 {
         } => {
             args.limits.apply();
             fit::run(args)
+        }
+        Command::States(args) => {
+            args.limits.apply();
+            states::run(&args)
         }
         Command::Plot(args) => plot::run(&args),
         Command::Study {

@@ -9,3 +9,4 @@ pub mod obj;
 pub mod plot;
 pub mod results;
 pub mod stability;
+pub mod states;

@@ -1,0 +1,159 @@
+//! Multiple equilibria (`rodnet states`): from the scene's own equilibrium, the network is
+//! pushed along its lowest eigenmodes, both ways and by two amplitudes, and Newton (which leaves
+//! saddles along negative curvature) settles each push; states not seen before are kept and
+//! searched from in turn, breadth first. What it finds are the equilibria that such pushes reach:
+//! local minima, and the scene's own equilibrium whatever its index. It does not search for
+//! saddles between minima.
+
+use crate::math::vec::{dist, norm, sub};
+use crate::network::stability::analyse;
+use crate::network::Network;
+use crate::solver::{NewtonReport, NewtonSettings};
+use crate::variables::State;
+
+/// One equilibrium found.
+#[derive(Debug, Clone)]
+pub struct Found {
+    pub state: State,
+    pub report: NewtonReport,
+    /// No negative eigenvalue and no zero one but the gauge's, among the lowest computed.
+    pub stable: bool,
+    /// Negative eigenvalues among the lowest computed (a lower bound when `index_at_least`).
+    pub index: usize,
+    pub index_at_least: bool,
+    /// The lowest eigenvalue, N/m.
+    pub lowest_eigenvalue: f64,
+    /// How it was reached: "scene" or "state k, mode j, ±, amplitude".
+    pub found_by: String,
+}
+
+/// Eigenmodes pushed along from each state.
+pub const MODES: usize = 4;
+/// Push amplitudes: the largest node motion over the structure's bounding-box diagonal.
+pub const AMPLITUDES: [f64; 3] = [0.05, 0.2, 0.5];
+
+/// Searches from the network's current equilibrium (`first` its solve) for up to `max` states;
+/// `rest` is the network's state before that solve.
+pub fn search(
+    net: &mut Network,
+    settings: &NewtonSettings,
+    first: NewtonReport,
+    rest: &State,
+    max: usize,
+) -> Result<Vec<Found>, String> {
+    let size = diagonal(net);
+    let mut found = vec![describe(net, first, "scene".into())?];
+    let mut next = 0;
+    let settle = |net: &mut Network| {
+        crate::network::solve(&mut net.model, &settings.clone().equilibrate_only(true))
+    };
+    while next < found.len() && found.len() < max {
+        let from = found[next].state.clone();
+        // First the state's deflection from rest reversed: where a structure buckled one way,
+        // the other way is the first state to look for (a snap-through needs a push past the
+        // saddle between them, which pushes along the lowest modes may not reach).
+        net.model.state = from.clone();
+        reverse(net, rest);
+        let r = settle(net);
+        if r.converged && !found.iter().any(|f| same(net, &f.state, size)) {
+            found.push(describe(net, r, format!("state {next} reversed"))?);
+            if found.len() >= max {
+                break;
+            }
+        }
+        net.model.state = from.clone();
+        let modes = analyse(net, MODES)?.modes;
+        'modes: for (j, mode) in modes.iter().enumerate() {
+            for sign in [1.0, -1.0] {
+                for &amp in &AMPLITUDES {
+                    if found.len() >= max {
+                        break 'modes;
+                    }
+                    net.model.state = from.clone();
+                    push(net, mode, sign * amp * size);
+                    let r = settle(net);
+                    if !r.converged {
+                        continue;
+                    }
+                    if found.iter().any(|f| same(net, &f.state, size)) {
+                        continue;
+                    }
+                    let sign_name = if sign > 0.0 { "+" } else { "-" };
+                    let how = format!("state {next}, mode {j}, {sign_name}{amp}");
+                    found.push(describe(net, r, how)?);
+                }
+            }
+        }
+        next += 1;
+    }
+    net.model.state = found[0].state.clone();
+    Ok(found)
+}
+
+fn describe(net: &mut Network, report: NewtonReport, found_by: String) -> Result<Found, String> {
+    let st = analyse(net, MODES)?;
+    Ok(Found {
+        state: net.model.state.clone(),
+        report,
+        stable: st.stable,
+        index: st.negative,
+        index_at_least: st.negative_at_least,
+        lowest_eigenvalue: st.eigenvalues.first().copied().unwrap_or(f64::NAN),
+        found_by,
+    })
+}
+
+/// Reverses the free node coordinates' displacement from `rest` (x → 2 x_rest − x); twist
+/// angles and frames keep theirs.
+fn reverse(net: &mut Network, rest: &State) {
+    let m = &mut net.model;
+    for n in 0..m.layout.n_nodes() {
+        for k in 0..3 {
+            let v = m.layout.node_coord(n, k);
+            if m.free[v] != crate::variables::FIXED {
+                m.state.q[v] = 2.0 * rest.q[v] - m.state.q[v];
+            }
+        }
+    }
+    m.commit();
+}
+
+/// Moves the free unknowns along `mode` so that the largest node motion is `amount` (m).
+fn push(net: &mut Network, mode: &[f64], amount: f64) {
+    let m = &mut net.model;
+    let before: Vec<[f64; 3]> = (0..m.layout.n_nodes()).map(|n| m.position(n)).collect();
+    m.displace(mode, 1.0);
+    let largest = before
+        .iter()
+        .enumerate()
+        .map(|(n, p)| norm(sub(m.position(n), *p)))
+        .fold(0.0, f64::max);
+    m.displace(mode, -1.0);
+    if largest > 0.0 {
+        m.displace(mode, amount / largest);
+    }
+    m.commit();
+}
+
+/// The current state and `other` are one equilibrium: no node more than 1e-6 of the
+/// structure's size apart.
+fn same(net: &Network, other: &State, size: f64) -> bool {
+    let m = &net.model;
+    (0..m.layout.n_nodes()).all(|n| {
+        let p = m.layout.position(&other.q, n);
+        dist(&p, &m.position(n)) <= 1e-6 * size
+    })
+}
+
+fn diagonal(net: &Network) -> f64 {
+    let m = &net.model;
+    let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
+    for n in 0..m.layout.n_nodes() {
+        let p = m.position(n);
+        for k in 0..3 {
+            lo[k] = lo[k].min(p[k]);
+            hi[k] = hi[k].max(p[k]);
+        }
+    }
+    norm(sub(hi, lo)).max(1e-300)
+}

@@ -1,0 +1,84 @@
+//! `rodnet states`: the equilibria of a scene that pushes from its own equilibrium reach.
+
+use std::process::Command;
+
+fn rodnet() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_rodnet"))
+}
+
+#[test]
+fn a_buckled_strip_has_two_mirror_states_of_equal_energy() {
+    let d = std::env::temp_dir().join(format!("rodnet-states-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    let out = rodnet()
+        .args([
+            "states",
+            "networks/buckled_strip.ron",
+            "--quiet",
+            "--out-dir",
+        ])
+        .arg(&d)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let s: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(d.join("states.json")).unwrap()).unwrap();
+    let states = s["states"].as_array().unwrap();
+    assert_eq!(states.len(), 2, "{s}");
+    let e: Vec<f64> = states
+        .iter()
+        .map(|x| x["energy"].as_f64().unwrap())
+        .collect();
+    assert!((e[0] - e[1]).abs() < 1e-9 * e[0], "{e:?}");
+    let mid_z = |k: usize| {
+        let r: serde_json::Value = serde_json::from_slice(
+            &std::fs::read(d.join(states[k]["results"].as_str().unwrap())).unwrap(),
+        )
+        .unwrap();
+        assert!(r["converged"].as_bool().unwrap());
+        r["rods"][0]["points"][20][2].as_f64().unwrap()
+    };
+    let (z0, z1) = (mid_z(0), mid_z(1));
+    assert!(z0 > 0.1 && (z0 + z1).abs() < 1e-6 * z0, "{z0} {z1}");
+    for st in states {
+        assert_eq!(st["stable"], true);
+        assert_eq!(st["index"], 0);
+        assert!(st["lowest_eigenvalue"].as_f64().unwrap() > 0.0);
+    }
+    assert_eq!(states[0]["found_by"], "scene");
+    // --max bounds the search.
+    let out = rodnet()
+        .args([
+            "states",
+            "networks/buckled_strip.ron",
+            "--quiet",
+            "--max",
+            "1",
+            "--out-dir",
+        ])
+        .arg(&d)
+        .output()
+        .unwrap();
+    assert!(out.status.success());
+    let s: serde_json::Value =
+        serde_json::from_slice(&std::fs::read(d.join("states.json")).unwrap()).unwrap();
+    assert_eq!(s["states"].as_array().unwrap().len(), 1);
+}
+
+#[test]
+fn states_refuses_what_it_cannot_search() {
+    let d = std::env::temp_dir().join(format!("rodnet-states-bad-{}", std::process::id()));
+    let out = rodnet()
+        .args(["states", "networks/rod_over_sphere.ron", "--out-dir"])
+        .arg(&d)
+        .output()
+        .unwrap();
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{err}");
+    assert!(err.contains("contact"), "{err}");
+    assert!(!d.exists(), "nothing is created on bad input");
+}
