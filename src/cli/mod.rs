@@ -11,6 +11,7 @@ mod plot;
 pub mod progress;
 mod solve;
 mod study;
+mod sweep;
 
 use std::path::PathBuf;
 
@@ -18,7 +19,8 @@ use clap::{Parser, Subcommand};
 
 pub use buckle::BuckleArgs;
 pub use gridshell::{
-    HemisphereArgs, PathArg, SectionRatio, DEFAULT_RODS, DEFAULT_SUBDIVIDE, MAX_RODS,
+    hemisphere_spec, HemisphereArgs, PathArg, SectionRatio, DEFAULT_RODS, DEFAULT_SUBDIVIDE,
+    MAX_RODS,
 };
 pub use indent::IndentArgs;
 pub use limits::{parse_bytes, LimitArgs};
@@ -27,6 +29,7 @@ pub use output::{EXIT_BAD_INPUT, EXIT_NOT_CONVERGED, EXIT_OK};
 pub use plot::PlotArgs;
 pub use progress::show_progress;
 pub use study::{ConvergenceArgs, StudyCommand};
+pub use sweep::{SweepArgs, SweepCommand};
 
 #[derive(Parser, Debug)]
 #[command(
@@ -94,6 +97,9 @@ pub enum Command {
         #[command(subcommand)]
         study: StudyCommand,
     },
+    /// Parameter sweeps: one independent solve per point, in parallel on the local cores or
+    /// as a Slurm job array (docs/sweep.md).
+    Sweep(SweepArgs),
 }
 
 #[derive(Subcommand, Debug)]
@@ -154,6 +160,10 @@ pub fn run(cli: Cli) -> i32 {
         } => {
             args.limits.apply();
             study::run(&args)
+        }
+        Command::Sweep(args) => {
+            args.limits.apply();
+            sweep::run(&args)
         }
     }
 }
