@@ -229,3 +229,17 @@ impl Scene {
         }
     }
 }
+
+/// Benchmark helper (python/bench/overhead.py): mean seconds of `repeat` solves of the scene
+/// entirely in Rust, to set against `Scene.solve` called from Python.
+#[pyfunction]
+pub fn _bench_solve(py: Python<'_>, scene: &Scene, repeat: usize) -> f64 {
+    let job = Job::Scene(Box::new(scene.scene.clone()));
+    py.detach(|| {
+        let t0 = std::time::Instant::now();
+        for _ in 0..repeat {
+            let _ = run::solve(&job, None, None);
+        }
+        t0.elapsed().as_secs_f64() / repeat.max(1) as f64
+    })
+}
