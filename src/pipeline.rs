@@ -169,3 +169,54 @@ pub fn modes_obj(network: &Network, labels: &[String], modes: &[Vec<f64>]) -> St
 
 /// Largest node motion of a drawn mode shape, over the bounding-box diagonal.
 pub const MODE_AMPLITUDE: f64 = 0.1;
+
+/// Linear buckling of a scene about its rest state (`rodnet buckle`).
+pub struct Buckling {
+    pub network: Network,
+    pub linear: crate::network::stability::LinearBuckling,
+    /// The factors, modes and (unless `linear_only`) the first factor checked along the
+    /// nonlinear load path, as `rodnet buckle --json` writes them.
+    pub json: crate::io::stability::BucklingJson,
+}
+
+/// Why a scene has no buckling factors: a field the builder refuses, or the analysis.
+pub enum BuckleError {
+    Scene(FieldError),
+    Analysis(String),
+}
+
+/// The `k` lowest critical load factors of a validated scene and their modes, with the first
+/// checked along the load path unless `linear_only`.
+pub fn buckle(scene: &Scene, k: usize, linear_only: bool) -> Result<Buckling, BuckleError> {
+    use crate::network::stability;
+    let t0 = std::time::Instant::now();
+    let settings = settings_of(scene);
+    let mut net = build_within_limit(scene, settings.ordering).map_err(BuckleError::Scene)?;
+    if net.model.contact.is_some() {
+        return Err(BuckleError::Analysis(
+            "buckle does not handle contact or bounds yet (remove obstacles and bounds)".into(),
+        ));
+    }
+    let b = stability::buckling(&mut net, k)
+        .map_err(|e| BuckleError::Analysis(format!("linear buckling: {e}")))?;
+    let rest = stability::rods_now(&net);
+    let shapes: Vec<_> = b
+        .modes
+        .iter()
+        .map(|m| stability::mode_shape(&net, m, MODE_AMPLITUDE))
+        .collect();
+    let path = match b.factors.first() {
+        Some(&first) if !linear_only => {
+            Some(stability::critical_on_path(&mut net, &settings, first))
+        }
+        _ => None,
+    };
+    let mut json = crate::io::stability::BucklingJson::new(&b, &rest, &shapes);
+    json.path = path.as_ref().map(Into::into);
+    json.seconds = t0.elapsed().as_secs_f64();
+    Ok(Buckling {
+        network: net,
+        linear: b,
+        json,
+    })
+}

@@ -7,6 +7,7 @@ use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
+use rodnet::pipeline::BuckleError;
 use rodnet::scene::{self as rscene, FieldError};
 use rodnet::sweep::run::{self, Failure};
 use rodnet::sweep::{path, Job};
@@ -172,6 +173,40 @@ impl Scene {
                 .as_ref()
                 .map_or(String::new(), |f| format!(", from {f}"))
         )
+    }
+
+    /// Linear buckling about the rest state, as `rodnet buckle`, with the GIL released: the
+    /// `modes` lowest critical load factors (by which the loads and prescribed motions can be
+    /// multiplied before the structure buckles) and their modes, and unless `linear_only` the
+    /// first factor checked along the nonlinear load path. Returns the dict `rodnet buckle
+    /// --json` writes (`critical_load_factors`, `modes`, `converged`, `path`, ...).
+    #[pyo3(signature = (modes=4, *, linear_only=false))]
+    fn buckle<'py>(
+        &self,
+        py: Python<'py>,
+        modes: usize,
+        linear_only: bool,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        if !(1..=100).contains(&modes) {
+            return Err(PyValueError::new_err(format!(
+                "modes must be in 1..=100, got {modes}"
+            )));
+        }
+        let scene = &self.scene;
+        let out = py.detach(|| {
+            std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+                rodnet::pipeline::buckle(scene, modes, linear_only).map(|b| b.json)
+            }))
+        });
+        match out {
+            Ok(Ok(json)) => crate::to_python(py, &serde_json::to_value(json).expect("serializes")),
+            Ok(Err(BuckleError::Scene(e))) => Err(invalid(py, self.file.as_deref(), &self.src, &e)),
+            Ok(Err(BuckleError::Analysis(m))) => Err(SolveError::new_err(m)),
+            Err(p) => Err(SolveError::new_err(format!(
+                "internal error (please report): {}",
+                run::panic_message(&*p)
+            ))),
+        }
     }
 
     /// Solves the scene for its static equilibrium, with the GIL released.

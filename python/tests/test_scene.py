@@ -155,3 +155,13 @@ def test_hemisphere_has_target_metrics_and_refuses_bad_options():
     with pytest.raises(rodnet.SceneError) as e:
         rodnet.gridshell.hemisphere(joint="glue")
     assert e.value.field == "joint"
+
+
+def test_buckle_matches_euler(networks):
+    # networks/euler_column.ron: P_c / P = pi^2 EI / (4 L^2) / 1 mN = 1.937892; with a round
+    # section the two bending planes buckle at the same load (a pair of equal factors).
+    b = rodnet.load_scene(networks / "euler_column.ron").buckle(modes=2, linear_only=True)
+    f = b["critical_load_factors"]
+    assert f[0] == pytest.approx(1.937892, rel=2e-3)
+    assert f[1] == pytest.approx(f[0], rel=1e-6)
+    assert "path" not in b and len(b["modes"]) == 2
