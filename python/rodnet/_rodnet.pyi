@@ -43,6 +43,14 @@ class Scene:
     @property
     def path(self) -> Optional[str]: ...
     def buckle(self, modes: int = 4, *, linear_only: bool = False) -> Dict[str, Any]: ...
+    def indent(
+        self,
+        at: str,
+        depth: float,
+        *,
+        direction: Tuple[float, float, float] = (0.0, 0.0, -1.0),
+        steps: int = 20,
+    ) -> Dict[str, Any]: ...
     def solve(
         self,
         *,

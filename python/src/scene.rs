@@ -7,7 +7,7 @@ use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use rodnet::pipeline::BuckleError;
+use rodnet::pipeline::{BuckleError, IndentError};
 use rodnet::scene::{self as rscene, FieldError};
 use rodnet::sweep::run::{self, Failure};
 use rodnet::sweep::{path, Job};
@@ -202,6 +202,42 @@ impl Scene {
             Ok(Ok(json)) => crate::to_python(py, &serde_json::to_value(json).expect("serializes")),
             Ok(Err(BuckleError::Scene(e))) => Err(invalid(py, self.file.as_deref(), &self.src, &e)),
             Ok(Err(BuckleError::Analysis(m))) => Err(SolveError::new_err(m)),
+            Err(p) => Err(SolveError::new_err(format!(
+                "internal error (please report): {}",
+                run::panic_message(&*p)
+            ))),
+        }
+    }
+
+    /// Indentation, as `rodnet indent`, with the GIL released: solves the scene, then pushes
+    /// the point `at` (a joint's name, "ROD:VERTEX" or "apex") by `depth` m along
+    /// `direction` in `steps` displacement-controlled steps. Returns the dict `rodnet indent
+    /// --json` writes (`linear_stiffness` N/m, `curve` [[depth m, force N], ...],
+    /// `limit_points`, `complete`, ...).
+    #[pyo3(signature = (at, depth, *, direction=(0.0, 0.0, -1.0), steps=20))]
+    fn indent<'py>(
+        &self,
+        py: Python<'py>,
+        at: &str,
+        depth: f64,
+        direction: (f64, f64, f64),
+        steps: usize,
+    ) -> PyResult<Bound<'py, PyAny>> {
+        let scene = &self.scene;
+        let d = [direction.0, direction.1, direction.2];
+        let out = py.detach(|| {
+            std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+                rodnet::pipeline::indent(scene, at, d, depth, steps).map(|i| i.json)
+            }))
+        });
+        match out {
+            Ok(Ok(json)) => crate::to_python(py, &serde_json::to_value(json).expect("serializes")),
+            Ok(Err(IndentError::Scene(e))) => Err(invalid(py, self.file.as_deref(), &self.src, &e)),
+            Ok(Err(IndentError::At(m))) => Err(PyValueError::new_err(m)),
+            Ok(Err(IndentError::NotConverged(m))) => Err(SolveError::new_err(format!(
+                "the scene itself did not converge ({m}); nothing pushed"
+            ))),
+            Ok(Err(IndentError::Push(m))) => Err(SolveError::new_err(m)),
             Err(p) => Err(SolveError::new_err(format!(
                 "internal error (please report): {}",
                 run::panic_message(&*p)

@@ -165,3 +165,27 @@ def test_buckle_matches_euler(networks):
     assert f[0] == pytest.approx(1.937892, rel=2e-3)
     assert f[1] == pytest.approx(f[0], rel=1e-6)
     assert "path" not in b and len(b["modes"]) == 2
+
+
+def test_indent_gives_the_simply_supported_beams_stiffness():
+    # Midspan stiffness of a simply supported beam: 48 EI / L^3 (L = 1 m).
+    E, r = 1e9, 0.002
+    roller = lambda n: {"rod": "b", "vertex": 2, "kind": {"Roller": {"normal": n}}}
+    beam = rodnet.Scene.from_dict(
+        {
+            "materials": {"m": {"young_modulus": E, "poisson_ratio": 0.3,
+                                "section": {"Circle": {"radius": r}}}},
+            "rods": [{"name": "b", "material": "m", "subdivide": 16,
+                      "points": [[0, 0, 0], [0.5, 0, 0], [1, 0, 0]]}],
+            "supports": [{"rod": "b", "vertex": 0, "kind": "Pin"},
+                         roller([0, 0, 1]), roller([0, 1, 0])],
+        }
+    )
+    out = beam.indent("b:1", 1e-6, steps=1)
+    exact = 48 * E * np.pi * r**4 / 4
+    assert out["linear_stiffness"] == pytest.approx(exact, rel=1e-2)
+    assert out["complete"] and out["frictionless"]
+    depth, force = out["curve"][-1]
+    assert force / depth == pytest.approx(out["linear_stiffness"], rel=1e-5)
+    with pytest.raises(ValueError):
+        beam.indent("nowhere", 1e-3)
