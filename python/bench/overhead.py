@@ -28,23 +28,24 @@ def tiny():
     )
 
 
-def best_mean(f, repeat, rounds=7):
-    best = float("inf")
-    for _ in range(rounds):
-        t0 = time.perf_counter()
-        for _ in range(repeat):
-            f()
-        best = min(best, (time.perf_counter() - t0) / repeat)
-    return best
+def mean_of(f, repeat):
+    t0 = time.perf_counter()
+    for _ in range(repeat):
+        f()
+    return (time.perf_counter() - t0) / repeat
 
 
 for name, scene, repeat in [
-    ("tiny beam (4 edges)", tiny(), 2000),
-    ("cantilever.ron (40 edges)", rodnet.load_scene(ROOT / "networks" / "cantilever.ron"), 200),
+    ("tiny beam (4 edges)", tiny(), 1000),
+    ("cantilever.ron (40 edges)", rodnet.load_scene(ROOT / "networks" / "cantilever.ron"), 50),
 ]:
     scene.solve()
-    py = best_mean(scene.solve, repeat)
-    rust = min(_rodnet._bench_solve(scene, repeat) for _ in range(7))
+    # Rounds alternate between the two so that a change in the machine's load hits both; the
+    # fastest round of each is the least disturbed.
+    py, rust = float("inf"), float("inf")
+    for _ in range(15):
+        py = min(py, mean_of(scene.solve, repeat))
+        rust = min(rust, _rodnet._bench_solve(scene, repeat))
     print(
         f"{name}: from Python {py * 1e6:9.1f} us, in Rust {rust * 1e6:9.1f} us, "
         f"overhead {(py - rust) * 1e6:7.1f} us per call"
