@@ -38,8 +38,9 @@ pub fn unit(name: &str) -> &'static str {
         ("target" | "gridshell", "max_abs_radial_deviation" | "rms_radial_deviation")
         | ("target" | "gridshell", "apex_height" | "max_net_distance" | "rms_net_distance")
         | ("gridshell", "mean_radial_deviation" | "lowest_joint_height") => "1",
+        ("utilization", _) | (_, "utilization") => "1",
         (_, "young_modulus" | "shear_modulus" | "yield_strength" | "max_bending_stress") => "Pa",
-        (_, "bending_stress" | "max") if first == "utilization" => "1",
+        (_, "bending_stress" | "von_mises") => "Pa",
         (_, "density") => "kg/m^3",
         (_, "radius" | "width" | "height" | "a" | "b" | "length" | "points" | "position") => "m",
         (_, "move_to" | "gap" | "primal_feasibility") => "m",
@@ -191,4 +192,23 @@ pub fn merge(dir: &Path) -> Result<(PathBuf, Vec<usize>), String> {
     crate::io::atomic::write(&p, csv(&m, &rows).as_bytes())
         .map_err(|e| format!("cannot write {}: {e}", p.display()))?;
     Ok((p, missing))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn units_follow_the_last_name() {
+        assert_eq!(unit("energy.total"), "J");
+        assert_eq!(unit("materials.steel.young_modulus"), "Pa");
+        assert_eq!(unit("rods.beam.points[-1][1]"), "m");
+        assert_eq!(unit("reactions[0].moment[2]"), "N m");
+        assert_eq!(unit("rods.beam.bending_stress[3]"), "Pa");
+        assert_eq!(unit("utilization.max"), "1");
+        assert_eq!(unit("target.apex_height"), "1");
+        assert_eq!(unit("something.else"), "?");
+        assert_eq!(quote("a,b"), "\"a,b\"");
+        assert_eq!(quote("say \"x\""), "\"say \"\"x\"\"\"");
+    }
 }
