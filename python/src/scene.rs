@@ -35,14 +35,30 @@ fn invalid(py: Python<'_>, file: Option<&str>, src: &str, e: &FieldError) -> PyE
     scene_error(py, file, at.line, at.column, Some(e.path()), &at.message)
 }
 
+/// The field a scene's text fails validation at, when the text itself parses (the command
+/// line's message names it; Python's `SceneError.field` holds it apart).
+fn validation_field(src: &str) -> Option<String> {
+    // The options of `rodnet::scene::parse`.
+    let options =
+        ron::Options::default().with_default_extension(ron::extensions::Extensions::IMPLICIT_SOME);
+    let scene: rscene::Scene = options.from_str(src).ok()?;
+    rscene::validate::validate(&scene).err().map(|e| e.path())
+}
+
 impl Scene {
     fn parse(py: Python<'_>, file: Option<String>, src: String) -> PyResult<Scene> {
         let label = file.clone().unwrap_or_else(|| "<string>".into());
-        let scene = rscene::parse_unvalidated(&label, &src).map_err(|e| {
-            let file = file.as_ref().map(|_| e.file.clone());
-            scene_error(py, file.as_deref(), e.line, e.column, None, &e.message)
+        let scene = rscene::parse(&label, &src).map_err(|e| {
+            let file = file.as_ref().map(|_| e.file.as_str());
+            scene_error(
+                py,
+                file,
+                e.line,
+                e.column,
+                validation_field(&src),
+                &e.message,
+            )
         })?;
-        rscene::validate::validate(&scene).map_err(|e| invalid(py, file.as_deref(), &src, &e))?;
         Ok(Scene { scene, file, src })
     }
 

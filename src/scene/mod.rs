@@ -94,14 +94,6 @@ impl SceneError {
 
 /// Parses and validates a scene from text; `file` names it in errors.
 pub fn parse(file: &str, src: &str) -> Result<Scene, SceneError> {
-    let scene = parse_unvalidated(file, src)?;
-    validate::validate(&scene).map_err(|e| SceneError::from_field(file, src, &e))?;
-    Ok(scene)
-}
-
-/// Parses a scene from text without validating it, for callers that want the validation's
-/// [`FieldError`] itself (the Python module reports its field).
-pub fn parse_unvalidated(file: &str, src: &str) -> Result<Scene, SceneError> {
     // Implicit `Some` lets scenes write `poisson_ratio: 0.5` as the contract does, while
     // `Some(..)` and `None` are still accepted. (UNWRAP_VARIANT_NEWTYPES would also unwrap
     // `Some((x, y, z))` and break the contract's `move_to` syntax, so `Elastic` is a struct
@@ -125,6 +117,7 @@ pub fn parse_unvalidated(file: &str, src: &str) -> Result<Scene, SceneError> {
             message: format!("materials: duplicate material name \"{key}\""),
         });
     }
+    validate::validate(&scene).map_err(|e| SceneError::from_field(file, src, &e))?;
     Ok(scene)
 }
 
