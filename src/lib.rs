@@ -3,7 +3,7 @@
 //! Layout: [`rod`] (sections, frames, transport), [`energy`] (one term per file), [`network`]
 //! (state, DOF map, assembly, builder), [`solver`] (Newton, sparse Cholesky), [`scene`] (RON format,
 //! validation, scenes from OBJ networks), [`io`] (results, exports), [`gridshell`] (Chebyshev nets),
-//! [`study`] (convergence under subdivision), [`cli`] (the `rodnet` commands).
+//! [`study`] (convergence under subdivision), [`sweep`] (parameter sweeps), [`cli`] (the `rodnet` commands).
 
 // Numeric kernels index several arrays with one loop variable; iterator chains there hide the
 // mathematics without making it safer.
@@ -21,4 +21,5 @@ pub mod scene;
 pub mod solver;
 pub mod study;
 pub mod surface;
+pub mod sweep;
 pub mod variables;

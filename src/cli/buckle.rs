@@ -5,8 +5,8 @@ use std::path::{Path, PathBuf};
 use clap::Args;
 
 use super::output::{bad, check_outputs, given, EXIT_OK};
-use crate::io::{atomic, stability::BucklingJson};
-use crate::network::stability;
+use crate::io::atomic;
+use crate::pipeline::BuckleError;
 use crate::scene::{self, SceneError};
 
 #[derive(Args, Debug)]
@@ -42,47 +42,22 @@ pub fn run(a: &BuckleArgs) -> i32 {
         Err(e) => return bad(e),
     };
     let label = a.scene.display().to_string();
-    let ordering = crate::pipeline::settings_of(&sc).ordering;
-    let mut net = match crate::pipeline::build_within_limit(&sc, ordering) {
-        Ok(n) => n,
-        Err(e) => return bad(SceneError::from_field(&label, &src, &e)),
-    };
-    if net.model.contact.is_some() {
-        return bad(format_args!(
-            "{label}: buckle does not handle contact or bounds yet (remove obstacles and bounds)"
-        ));
-    }
-    let t0 = std::time::Instant::now();
-    let b = match stability::buckling(&mut net, a.modes as usize) {
+    let buckling = match crate::pipeline::buckle(&sc, a.modes as usize, a.linear_only) {
         Ok(b) => b,
-        Err(e) => return bad(format_args!("{label}: linear buckling: {e}")),
+        Err(BuckleError::Scene(e)) => return bad(SceneError::from_field(&label, &src, &e)),
+        Err(BuckleError::Analysis(e)) => return bad(format_args!("{label}: {e}")),
     };
+    let (net, b, json) = (&buckling.network, &buckling.linear, &buckling.json);
     if !b.converged {
         eprintln!(
             "warning: the factors did not settle within {} rounds; converged is false in the JSON",
             b.rounds
         );
     }
-    let rest = stability::rods_now(&net);
-    let shapes: Vec<_> = b
-        .modes
-        .iter()
-        .map(|m| stability::mode_shape(&net, m, crate::pipeline::MODE_AMPLITUDE))
-        .collect();
-    let path = match b.factors.first() {
-        Some(&first) if !a.linear_only => Some(stability::critical_on_path(
-            &mut net,
-            &crate::pipeline::settings_of(&sc),
-            first,
-        )),
-        _ => None,
-    };
-    let mut json = BucklingJson::new(&b, &rest, &shapes);
-    json.path = path.as_ref().map(Into::into);
-    json.seconds = t0.elapsed().as_secs_f64();
+    let path = &json.path;
     let mut files: Vec<(&Path, Vec<u8>)> = Vec::new();
     if let Some(p) = &a.json {
-        match serde_json::to_vec_pretty(&json) {
+        match serde_json::to_vec_pretty(json) {
             Ok(bytes) => files.push((p, bytes)),
             Err(e) => return bad(format_args!("cannot encode the results as JSON: {e}")),
         }
@@ -96,7 +71,7 @@ pub fn run(a: &BuckleArgs) -> i32 {
             .collect();
         files.push((
             p,
-            crate::pipeline::modes_obj(&net, &labels, &b.modes).into_bytes(),
+            crate::pipeline::modes_obj(net, &labels, &b.modes).into_bytes(),
         ));
     }
     if let Err((p, e)) = atomic::write_all(&files) {
@@ -117,7 +92,7 @@ pub fn run(a: &BuckleArgs) -> i32 {
         );
     }
     if let Some(pc) = &path {
-        match (pc.factor, b.factors.first()) {
+        match (pc.critical_load_factor, b.factors.first()) {
             (Some(f), Some(&lin)) => {
                 println!(
                     "  along the load path: the lowest eigenvalue crosses zero at {f:.6e} \

@@ -157,7 +157,7 @@ pub(super) fn parse_section(s: &str) -> Result<SectionRatio, String> {
 }
 
 /// Checks the numbers clap cannot check by type.
-pub(super) fn hemisphere_spec(a: &HemisphereArgs) -> Result<HemisphereSpec, String> {
+pub fn hemisphere_spec(a: &HemisphereArgs) -> Result<HemisphereSpec, String> {
     let positive = |x: f64| x.is_finite() && x > 0.0;
     // Every length of the footprint is R times a ratio of order one; outside this range its
     // squares and the section's rigidities (r⁴ E) leave the doubles, and the net's sizes with

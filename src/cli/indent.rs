@@ -8,9 +8,8 @@ use clap::Args;
 use super::output::{bad, check_outputs, given, EXIT_NOT_CONVERGED, EXIT_OK};
 use crate::io::indent::{curve_csv, IndentJson};
 use crate::io::{atomic, curve_plot};
-use crate::network::indent::{linear_stiffness, push, Push};
-use crate::pipeline as job;
-use crate::scene::{self, Scene, SceneError};
+use crate::pipeline::{self as job, IndentError};
+use crate::scene::{self, SceneError};
 
 #[derive(Args, Debug)]
 pub struct IndentArgs {
@@ -66,57 +65,15 @@ pub fn run(a: &IndentArgs) -> i32 {
         Err(e) => return bad(e),
     };
     let label = a.scene.display().to_string();
-    let settings = job::settings_of(&sc);
-    let mut sol = match job::solve_scene(&sc, &settings) {
-        Ok(s) => s,
-        Err(e) => return bad(SceneError::from_field(&label, &src, &e)),
-    };
-    if !sol.results.converged {
-        eprintln!(
-            "error: {label}: the scene itself did not converge ({}); nothing pushed",
-            sol.report.message.clone().unwrap_or_default()
-        );
-        return EXIT_NOT_CONVERGED;
-    }
-    let (rod, vertex, joint) = match locate(&a.at, &sc, &sol, direction) {
-        Ok(p) => p,
-        Err(e) => return bad(format_args!("--at {}: {e}", a.at)),
-    };
-    let Some(node) = sol.network.rod(&rod).and_then(|r| r.vertex_node(vertex)) else {
-        return bad(format_args!("--at {}: no such vertex", a.at));
-    };
-    let position = sol.network.model.position(node);
-    let k = linear_stiffness(&mut sol.network, node, direction);
-    let how = Push {
-        rod: rod.clone(),
-        vertex,
-        direction,
-        depth: a.depth,
-        steps: a.steps as usize,
-    };
-    let curve = match push(&sc, &sol.network, &how, &settings) {
-        Ok(c) => c,
-        Err(e) => return bad(format_args!("{label}: {e}")),
-    };
-    let (pts, lims) = IndentJson::curve_of(&curve);
-    let out = IndentJson {
-        rod,
-        vertex,
-        joint,
-        position,
-        direction,
-        depth: a.depth,
-        linear_stiffness: k.as_ref().ok().copied(),
-        linear_stiffness_note: k.as_ref().err().cloned(),
-        frictionless: curve.frictionless,
-        max_lateral_force: curve.lateral,
-        curve: pts,
-        limit_points: lims,
-        complete: curve.complete,
-        message: curve.message.clone(),
-        solve_iterations: sol.report.iterations,
-        iterations: curve.iterations,
-        seconds: curve.seconds,
+    let (out, curve) = match job::indent(&sc, &a.at, direction, a.depth, a.steps as usize) {
+        Ok(i) => (i.json, i.curve),
+        Err(IndentError::Scene(e)) => return bad(SceneError::from_field(&label, &src, &e)),
+        Err(IndentError::NotConverged(m)) => {
+            eprintln!("error: {label}: the scene itself did not converge ({m}); nothing pushed");
+            return EXIT_NOT_CONVERGED;
+        }
+        Err(IndentError::At(e)) => return bad(format_args!("--at {}: {e}", a.at)),
+        Err(IndentError::Push(e)) => return bad(format_args!("{label}: {e}")),
     };
     if let Err(e) = write(a, &out, &curve.points, &curve.limit_points) {
         return bad(e);
@@ -199,58 +156,4 @@ fn parse_direction(s: &str) -> Result<[f64; 3], String> {
         return Err(format!("must be a finite, non-zero direction, got {s:?}"));
     }
     Ok([x / n, y / n, z / n])
-}
-
-/// The pushed point as (rod, input vertex, joint name).
-fn locate(
-    at: &str,
-    sc: &Scene,
-    sol: &job::Solution,
-    d: [f64; 3],
-) -> Result<(String, usize, Option<String>), String> {
-    let along = |p: [f64; 3]| p[0] * d[0] + p[1] * d[1] + p[2] * d[2];
-    if at == "apex" {
-        let net = &sol.network;
-        let best = if sc.joints.is_empty() {
-            net.rods
-                .iter()
-                .flat_map(|r| {
-                    (0..r.nodes.len().div_ceil(r.subdivide.max(1)))
-                        .filter_map(move |v| r.vertex_node(v).map(|n| (r.name.clone(), v, n)))
-                })
-                .map(|(r, v, n)| (along(net.model.position(n)), r, v, None))
-                .min_by(|a, b| a.0.total_cmp(&b.0))
-        } else {
-            sc.joints
-                .iter()
-                .filter_map(|j| {
-                    let info = net.joints.iter().find(|i| i.name == j.name)?;
-                    let (r, v) = j.at[0].clone();
-                    Some((
-                        along(net.model.position(info.node)),
-                        r,
-                        v,
-                        Some(j.name.clone()),
-                    ))
-                })
-                .min_by(|a, b| a.0.total_cmp(&b.0))
-        };
-        return best
-            .map(|(_, r, v, j)| (r, v, j))
-            .ok_or_else(|| "the scene has no vertex to push".into());
-    }
-    if let Some(j) = sc.joints.iter().find(|j| j.name == at) {
-        let (r, v) = j.at[0].clone();
-        return Ok((r, v, Some(j.name.clone())));
-    }
-    if let Some((rod, v)) = at.rsplit_once(':') {
-        let v: usize = v
-            .parse()
-            .map_err(|_| format!("expected ROD:VERTEX with a vertex number, got {at:?}"))?;
-        if sc.rods.iter().any(|r| r.name == rod) {
-            return Ok((rod.to_string(), v, None));
-        }
-        return Err(format!("no rod named {rod:?}"));
-    }
-    Err("expected a joint's name, ROD:VERTEX or apex".into())
 }

@@ -13,6 +13,7 @@ pub mod progress;
 mod solve;
 mod states;
 mod study;
+mod sweep;
 
 use std::path::PathBuf;
 
@@ -20,7 +21,8 @@ use clap::{Parser, Subcommand};
 
 pub use buckle::BuckleArgs;
 pub use gridshell::{
-    HemisphereArgs, PathArg, SectionRatio, DEFAULT_RODS, DEFAULT_SUBDIVIDE, MAX_RODS,
+    hemisphere_spec, HemisphereArgs, PathArg, SectionRatio, DEFAULT_RODS, DEFAULT_SUBDIVIDE,
+    MAX_RODS,
 };
 pub use indent::IndentArgs;
 pub use limits::{parse_bytes, LimitArgs};
@@ -29,6 +31,7 @@ pub use output::{EXIT_BAD_INPUT, EXIT_NOT_CONVERGED, EXIT_OK};
 pub use plot::PlotArgs;
 pub use progress::show_progress;
 pub use study::{ConvergenceArgs, StudyCommand};
+pub use sweep::{SweepArgs, SweepCommand};
 
 #[derive(Parser, Debug)]
 #[command(
@@ -104,6 +107,9 @@ pub enum Command {
         #[command(subcommand)]
         study: StudyCommand,
     },
+    /// Parameter sweeps: one independent solve per point, in parallel on the local cores or
+    /// as a Slurm job array (docs/sweep.md).
+    Sweep(SweepArgs),
 }
 
 #[derive(Subcommand, Debug)]
@@ -181,6 +187,10 @@ pub fn run(cli: Cli) -> i32 {
         } => {
             args.limits.apply();
             study::run(&args)
+        }
+        Command::Sweep(args) => {
+            args.limits.apply();
+            sweep::run(&args)
         }
     }
 }

@@ -1,0 +1,200 @@
+//! `rodnet.Results`: a solve's results (the results JSON of docs/contract.md), with NumPy
+//! arrays for the rods' points and twists.
+
+use std::path::PathBuf;
+
+use pyo3::exceptions::{PyIndexError, PyKeyError, PyOSError};
+use pyo3::prelude::*;
+use pyo3::types::PyBytes;
+
+use rodnet::io::results::RodJson;
+use rodnet::sweep::run::Solved;
+
+/// The results of a solve: the content of the results JSON (`to_dict()`), with shortcuts.
+#[pyclass(module = "rodnet", frozen)]
+pub struct Results {
+    solved: Solved,
+}
+
+impl Results {
+    pub fn new(solved: Solved) -> Results {
+        Results { solved }
+    }
+
+    fn rod(&self, rod: &Bound<'_, PyAny>) -> PyResult<&RodJson> {
+        let rods = &self.solved.results.rods;
+        if let Ok(i) = rod.extract::<i64>() {
+            let n = rods.len() as i64;
+            let k = if i < 0 { i + n } else { i };
+            return usize::try_from(k)
+                .ok()
+                .and_then(|k| rods.get(k))
+                .ok_or_else(|| {
+                    PyIndexError::new_err(format!("rod index {i} out of range ({n} rods)"))
+                });
+        }
+        let name: String = rod.extract()?;
+        rods.iter().find(|r| r.name == name).ok_or_else(|| {
+            let names: Vec<&str> = rods.iter().map(|r| r.name.as_str()).collect();
+            PyKeyError::new_err(format!(
+                "no rod named {name:?} (rods: {})",
+                names.join(", ")
+            ))
+        })
+    }
+}
+
+/// A float64 NumPy array of `shape` from `values`.
+fn array<'py>(py: Python<'py>, values: &[f64], shape: &[usize]) -> PyResult<Bound<'py, PyAny>> {
+    let bytes: Vec<u8> = values.iter().flat_map(|v| v.to_ne_bytes()).collect();
+    let np = py.import("numpy")?;
+    // frombuffer shares the immutable bytes; the copy makes an ordinary writable array.
+    np.call_method1("frombuffer", (PyBytes::new(py, &bytes), "float64"))?
+        .call_method1("reshape", (shape.to_vec(),))?
+        .call_method0("copy")
+}
+
+#[pymethods]
+impl Results {
+    /// Whether the solve reached its tolerance.
+    #[getter]
+    fn converged(&self) -> bool {
+        self.solved.results.converged
+    }
+    /// Newton iterations over all load steps.
+    #[getter]
+    fn iterations(&self) -> usize {
+        self.solved.results.iterations
+    }
+    /// Final relative residual.
+    #[getter]
+    fn residual(&self) -> f64 {
+        self.solved.results.residual
+    }
+    /// Total energy at the equilibrium, J (the parts are in `to_dict()["energy"]`).
+    #[getter]
+    fn energy(&self) -> f64 {
+        self.solved.results.energy.total
+    }
+    /// Solve time, s.
+    #[getter]
+    fn seconds(&self) -> f64 {
+        self.solved.results.seconds
+    }
+    /// Whether the equilibrium is stable (Hessian positive definite).
+    #[getter]
+    fn stable(&self) -> bool {
+        self.solved.results.solver.stable
+    }
+    /// The solver's message (why it stopped, when it did not converge), or None.
+    #[getter]
+    fn message(&self) -> Option<String> {
+        self.solved.results.solver.message.clone()
+    }
+    /// Rod names, in order.
+    #[getter]
+    fn rods(&self) -> Vec<String> {
+        self.solved
+            .results
+            .rods
+            .iter()
+            .map(|r| r.name.clone())
+            .collect()
+    }
+    /// Support reactions: dicts with `rod`, `vertex`, `force` (N) and `moment` (N·m).
+    #[getter]
+    fn reactions<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        let v = serde_json::to_value(&self.solved.results.reactions).expect("serializes");
+        crate::to_python(py, &v)
+    }
+    /// The shape metrics against the scene's (or the gridshell's) target, or None.
+    #[getter]
+    fn target<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyAny>>> {
+        match &self.solved.results.target {
+            Some(t) => Ok(Some(crate::to_python(
+                py,
+                &serde_json::to_value(t).expect("serializes"),
+            )?)),
+            None => Ok(None),
+        }
+    }
+    /// The eigen-analysis (`modes=K`), or None.
+    #[getter]
+    fn stability<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyAny>>> {
+        match &self.solved.results.stability {
+            Some(s) => Ok(Some(crate::to_python(
+                py,
+                &serde_json::to_value(s).expect("serializes"),
+            )?)),
+            None => Ok(None),
+        }
+    }
+    /// The generated gridshell's block (options, sizes, shape metrics), or None.
+    #[getter]
+    fn gridshell<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyAny>>> {
+        match &self.solved.gridshell {
+            Some(g) => Ok(Some(crate::to_python(
+                py,
+                &serde_json::to_value(g).expect("serializes"),
+            )?)),
+            None => Ok(None),
+        }
+    }
+
+    /// Node positions of a rod (by name or index), m: an (n, 3) array.
+    fn points<'py>(&self, py: Python<'py>, rod: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyAny>> {
+        let r = self.rod(rod)?;
+        let flat: Vec<f64> = r.points.iter().flatten().copied().collect();
+        array(py, &flat, &[r.points.len(), 3])
+    }
+
+    /// Material-frame angle of each edge of a rod (by name or index), rad: an (n - 1,) array.
+    fn twist<'py>(&self, py: Python<'py>, rod: &Bound<'py, PyAny>) -> PyResult<Bound<'py, PyAny>> {
+        let r = self.rod(rod)?;
+        array(py, &r.twist, &[r.twist.len()])
+    }
+
+    /// The results JSON as Python data.
+    fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
+        crate::to_python(py, &self.solved.to_json())
+    }
+
+    /// The results JSON text.
+    fn to_json(&self) -> String {
+        serde_json::to_string_pretty(&self.solved.to_json()).expect("serializes")
+    }
+
+    /// Writes the results JSON (as `rodnet solve --json`), atomically.
+    fn write_json(&self, path: PathBuf) -> PyResult<()> {
+        write(&path, self.to_json().as_bytes())
+    }
+
+    /// Writes the equilibrium as OBJ polylines (as `rodnet solve --obj`), atomically.
+    fn write_obj(&self, path: PathBuf) -> PyResult<()> {
+        write(
+            &path,
+            rodnet::io::obj::to_obj(&self.solved.results).as_bytes(),
+        )
+    }
+
+    fn __repr__(&self) -> String {
+        let r = &self.solved.results;
+        format!(
+            "Results({}, {} iterations, residual {:.2e}, energy {:.6e} J, {} rods)",
+            if r.converged {
+                "converged"
+            } else {
+                "NOT converged"
+            },
+            r.iterations,
+            r.residual,
+            r.energy.total,
+            r.rods.len()
+        )
+    }
+}
+
+fn write(path: &std::path::Path, bytes: &[u8]) -> PyResult<()> {
+    rodnet::io::atomic::write(path, bytes)
+        .map_err(|e| PyOSError::new_err(format!("cannot write {}: {e}", path.display())))
+}
