@@ -346,3 +346,40 @@ fn rods_stop_where_the_net_locks() {
         }
     }
 }
+
+/// A scene with a Mesh target keeps comparing with its mesh when it is copied without the
+/// loaded mesh (serialized and read back, as sweeps and Python do) and when its RON is read
+/// from another folder.
+#[test]
+fn a_mesh_target_survives_copies_of_its_scene() {
+    let d = temp("copies");
+    write(
+        &d,
+        "cap.obj",
+        &shapes::to_obj(&shapes::paraboloid(1.0, 0.5, 8)),
+    );
+    let text =
+        "Scene(materials: {\"m\": Material(young_modulus: 1e9, poisson_ratio: 0.3, density: 0.0, \
+                section: Circle(radius: 0.01))}, rods: [Rod(name: \"a\", material: \"m\", \
+                points: [(0,0,0.5), (0.5,0,0.375)], subdivide: 4)], \
+                supports: [Support(rod: \"a\", vertex: 0, kind: Clamp)], \
+                target: Some(Mesh(path: \"cap.obj\")))";
+    let file = d.join("s.ron").display().to_string();
+    let scene = rodnet::scene::parse(&file, text).unwrap();
+    let solve = |sc: &rodnet::scene::Scene| {
+        let s = rodnet::pipeline::solve_scene(sc, &rodnet::pipeline::settings_of(sc)).unwrap();
+        s.results.target.unwrap()
+    };
+    let want = solve(&scene);
+    assert_eq!(want.shape, "mesh");
+    // Through JSON, the loaded mesh is gone; the path reads it again.
+    let copy: rodnet::scene::Scene =
+        serde_json::from_value(serde_json::to_value(&scene).unwrap()).unwrap();
+    let got = solve(&copy);
+    assert_eq!(got.max_abs_distance, want.max_abs_distance);
+    // The RON written back reads from anywhere.
+    let elsewhere = temp("copies-elsewhere").join("t.ron").display().to_string();
+    let again =
+        rodnet::scene::parse(&elsewhere, &rodnet::gridshell::footprint::to_ron(&scene)).unwrap();
+    assert_eq!(solve(&again).rms_distance, want.rms_distance);
+}

@@ -137,6 +137,9 @@ fn read_target_mesh(scene: &mut Scene, file: &str, src: &str) -> Result<(), Scen
     match crate::surface::Surface::load(&full, MAX_MESH_BYTES) {
         Ok(s) => {
             surface.0 = Some(std::sync::Arc::new(s));
+            // The path now names the mesh from anywhere: a copy of the scene that loses the
+            // loaded mesh (serialized and read back, edited by a sweep) reads it again.
+            *path = full.display().to_string();
             Ok(())
         }
         Err(e) if e.line.is_none() => Err(SceneError::from_field(

@@ -90,10 +90,22 @@ pub fn check(net: &Network, t: &Target) -> Option<TargetCheck> {
                 net: None,
             })
         }
-        Target::Mesh { surface, .. } => {
-            // Scenes read from files carry their mesh; one built in memory without it has
-            // nothing to compare with.
-            let s = surface.0.as_ref()?;
+        Target::Mesh { surface, path } => {
+            // Scenes read from files carry their mesh; a copy that lost it (serialized and read
+            // back) reads it again from its path, which parsing made absolute or relative to
+            // the working directory.
+            let loaded;
+            let s = match surface.0.as_ref() {
+                Some(s) => s,
+                None => {
+                    loaded = crate::surface::Surface::load(
+                        std::path::Path::new(path),
+                        crate::scene::MAX_MESH_BYTES,
+                    )
+                    .ok()?;
+                    &loaded
+                }
+            };
             let (mut max, mut sum2, mut sum) = (0.0f64, 0.0, 0.0);
             for &n in &nodes {
                 let d = s.signed_distance(m.position(n));
