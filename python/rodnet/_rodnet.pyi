@@ -126,3 +126,19 @@ def hemisphere(
     options: Sequence[Tuple[str, Any]], progress: Optional[Progress] = None
 ) -> Results: ...
 def hemisphere_options() -> List[str]: ...
+def fit(
+    target: str,
+    spacing: float,
+    *,
+    origin: Optional[Tuple[float, float, float]] = ...,
+    directions: Optional[Tuple[Tuple[float, float, float], Tuple[float, float, float]]] = ...,
+    layout: str = ...,
+    min_angle: Optional[float] = ...,
+    subdivide: int = ...,
+    joint: str = ...,
+    section_radius: Optional[float] = ...,
+    young_modulus: float = ...,
+    poisson_ratio: float = ...,
+    tolerance: Optional[float] = ...,
+    progress: Optional[Progress] = ...,
+) -> Results: ...

@@ -1,4 +1,5 @@
-from typing import List, Optional
+from typing import List, Optional, Sequence, Tuple, Union
+import os
 
 from ._rodnet import Progress, Results
 
@@ -20,3 +21,19 @@ def hemisphere(
     progress: Optional[Progress] = None,
 ) -> Results: ...
 def options() -> List[str]: ...
+def fit(
+    target: Union[str, os.PathLike],
+    spacing: float,
+    *,
+    origin: Optional[Sequence[float]] = None,
+    directions: Optional[Tuple[Sequence[float], Sequence[float]]] = None,
+    layout: str = "on",
+    min_angle: Optional[float] = None,
+    subdivide: int = 4,
+    joint: str = "ball",
+    section_radius: Optional[float] = None,
+    young_modulus: float = 1e9,
+    poisson_ratio: float = 0.3,
+    tolerance: Optional[float] = None,
+    progress: Optional[Progress] = None,
+) -> Results: ...

@@ -151,6 +151,7 @@ fn _rodnet(m: &Bound<'_, PyModule>) -> PyResult<()> {
     m.add_function(wrap_pyfunction!(scene::load_scene, m)?)?;
     m.add_function(wrap_pyfunction!(scene::_bench_solve, m)?)?;
     m.add_function(wrap_pyfunction!(sweep::hemisphere, m)?)?;
+    m.add_function(wrap_pyfunction!(sweep::fit, m)?)?;
     m.add_function(wrap_pyfunction!(sweep::hemisphere_options, m)?)?;
     m.add("__version__", env!("CARGO_PKG_VERSION"))?;
     Ok(())

@@ -224,3 +224,109 @@ impl Sweep {
         ))
     }
 }
+
+/// Fits a Chebyshev-net gridshell to the OBJ mesh `target` and form-finds it, as `rodnet
+/// gridshell fit` does, with the GIL released.
+#[pyfunction]
+#[pyo3(signature = (target, spacing, *, origin=None, directions=None, layout="on", min_angle=None,
+    subdivide=4, joint="ball", section_radius=None, young_modulus=1e9, poisson_ratio=0.3,
+    tolerance=None, progress=None))]
+#[allow(clippy::too_many_arguments)]
+pub fn fit(
+    py: Python<'_>,
+    target: PathBuf,
+    spacing: f64,
+    origin: Option<[f64; 3]>,
+    directions: Option<([f64; 3], [f64; 3])>,
+    layout: &str,
+    min_angle: Option<f64>,
+    subdivide: usize,
+    joint: &str,
+    section_radius: Option<f64>,
+    young_modulus: f64,
+    poisson_ratio: f64,
+    tolerance: Option<f64>,
+    progress: Option<Py<PyAny>>,
+) -> PyResult<Results> {
+    use rodnet::gridshell::fit::{footprint as fp, job, net::Layout};
+    use rodnet::gridshell::footprint::JointChoice;
+    let option = |name: &str, m: String| scene_error(py, None, None, None, Some(name.into()), &m);
+    let layout = match layout {
+        "on" => Layout::On,
+        "between" => Layout::Between,
+        other => {
+            return Err(option(
+                "layout",
+                format!("must be \"on\" or \"between\", got {other:?}"),
+            ))
+        }
+    };
+    let joint = match joint {
+        "ball" => JointChoice::Ball,
+        "hinge" => JointChoice::Hinge,
+        "rigid" => JointChoice::Rigid,
+        "elastic" => JointChoice::Elastic,
+        other => {
+            return Err(option(
+                "joint",
+                format!("must be ball, hinge, rigid or elastic, got {other:?}"),
+            ))
+        }
+    };
+    let spec = fp::FitSpec {
+        spacing,
+        origin,
+        directions,
+        layout,
+        min_angle_deg: min_angle.unwrap_or(fp::DEFAULT_MIN_ANGLE_DEG),
+        subdivide,
+        joint,
+        section: rodnet::scene::types::Section::Circle {
+            radius: section_radius.unwrap_or(spacing / 50.0),
+        },
+        young_modulus,
+        poisson_ratio,
+        tolerance,
+        max_iterations: rodnet::scene::types::Solver::default().max_iterations,
+    };
+    spec.check()
+        .map_err(|(name, m)| option(&name.replace('-', "_"), format!("{name} {m}")))?;
+    let surface =
+        rodnet::surface::Surface::load(&target, rodnet::scene::MAX_MESH_BYTES).map_err(|e| {
+            scene_error(
+                py,
+                Some(&e.file),
+                e.line,
+                e.line.map(|_| 1),
+                None,
+                &e.message,
+            )
+        })?;
+    let surface = std::sync::Arc::new(surface);
+    let mesh = std::fs::canonicalize(&target)
+        .unwrap_or(target)
+        .display()
+        .to_string();
+    let outcome = solve_released(py, progress, move |hook| {
+        match job::run(&surface, &mesh, &spec, hook) {
+            Ok(r) => Ok(run::Solved {
+                results: r.results,
+                gridshell: None,
+            }),
+            Err(job::FitError::Net(m)) => Err(Failure::Solve(m)),
+            Err(job::FitError::Scene(e)) => Err(Failure::Scene(e)),
+        }
+    })?;
+    match outcome {
+        Ok(s) => Ok(Results::new(s)),
+        Err(Failure::Scene(e)) => Err(scene_error(
+            py,
+            None,
+            None,
+            None,
+            Some(e.path()),
+            &e.message,
+        )),
+        Err(Failure::Solve(m)) => Err(SolveError::new_err(m)),
+    }
+}

@@ -104,51 +104,13 @@ fn parse_directions(s: &str) -> Result<([f64; 3], [f64; 3]), String> {
 }
 
 fn spec_of(a: &FitArgs) -> Result<FitSpec, String> {
-    let positive = |x: f64| x.is_finite() && x > 0.0;
-    if !positive(a.spacing) {
-        return Err(format!("--spacing must be positive, got {}", a.spacing));
-    }
-    if !(a.min_angle.is_finite() && a.min_angle > 0.0 && a.min_angle < 90.0) {
-        return Err(format!(
-            "--min-angle must lie in (0, 90) degrees, got {}",
-            a.min_angle
-        ));
-    }
-    if a.subdivide == 0 || a.subdivide > 64 {
-        return Err(format!(
-            "--subdivide must be in 1..=64, got {}",
-            a.subdivide
-        ));
-    }
-    if !(positive(a.young_modulus) && a.young_modulus <= crate::scene::validate::MAX_MAGNITUDE) {
-        return Err(format!(
-            "--young-modulus must be positive and finite, got {}",
-            a.young_modulus
-        ));
-    }
-    if !(a.poisson_ratio.is_finite() && a.poisson_ratio > -1.0 && a.poisson_ratio <= 0.5) {
-        return Err(format!(
-            "--poisson-ratio must lie in (-1, 0.5], got {}",
-            a.poisson_ratio
-        ));
-    }
-    if let Some(t) = a.tolerance.filter(|t| !positive(*t)) {
-        return Err(format!("--tolerance must be positive, got {t}"));
-    }
     let section = a.section.map_or(
         Section::Circle {
             radius: a.spacing / 50.0,
         },
         |s| s.0,
     );
-    if section.outer_radius() >= 0.5 * a.spacing {
-        return Err(format!(
-            "--section: rods {} m thick do not fit between crossings {} m apart",
-            2.0 * section.outer_radius(),
-            a.spacing
-        ));
-    }
-    Ok(FitSpec {
+    let spec = FitSpec {
         spacing: a.spacing,
         origin: a.origin,
         directions: a.directions,
@@ -169,7 +131,10 @@ fn spec_of(a: &FitArgs) -> Result<FitSpec, String> {
         poisson_ratio: a.poisson_ratio,
         tolerance: a.tolerance,
         max_iterations: Solver::default().max_iterations,
-    })
+    };
+    spec.check()
+        .map_err(|(option, m)| format!("--{option} {m}"))?;
+    Ok(spec)
 }
 
 struct Outputs {

@@ -41,6 +41,73 @@ pub struct FitSpec {
     pub max_iterations: usize,
 }
 
+impl FitSpec {
+    /// The checks the options need beyond their types: the option's name (as on the command
+    /// line, without dashes) and what is wrong.
+    pub fn check(&self) -> Result<(), (&'static str, String)> {
+        let positive = |x: f64| x.is_finite() && x > 0.0;
+        if !positive(self.spacing) {
+            return Err(("spacing", format!("must be positive, got {}", self.spacing)));
+        }
+        if !(self.min_angle_deg.is_finite()
+            && self.min_angle_deg > 0.0
+            && self.min_angle_deg < 90.0)
+        {
+            return Err((
+                "min-angle",
+                format!("must lie in (0, 90) degrees, got {}", self.min_angle_deg),
+            ));
+        }
+        if self.subdivide == 0 || self.subdivide > 64 {
+            return Err((
+                "subdivide",
+                format!("must be in 1..=64, got {}", self.subdivide),
+            ));
+        }
+        let max = crate::scene::validate::MAX_MAGNITUDE;
+        if !(positive(self.young_modulus) && self.young_modulus <= max) {
+            return Err((
+                "young-modulus",
+                format!("must be positive and finite, got {}", self.young_modulus),
+            ));
+        }
+        if !(self.poisson_ratio.is_finite()
+            && self.poisson_ratio > -1.0
+            && self.poisson_ratio <= 0.5)
+        {
+            return Err((
+                "poisson-ratio",
+                format!("must lie in (-1, 0.5], got {}", self.poisson_ratio),
+            ));
+        }
+        if let Some(t) = self.tolerance.filter(|t| !positive(*t)) {
+            return Err(("tolerance", format!("must be positive, got {t}")));
+        }
+        let finite = |p: &[f64; 3]| p.iter().all(|x| x.is_finite());
+        if self.origin.is_some_and(|o| !finite(&o)) {
+            return Err(("origin", "must be finite".into()));
+        }
+        if self
+            .directions
+            .is_some_and(|(a, b)| !finite(&a) || !finite(&b))
+        {
+            return Err(("directions", "must be finite".into()));
+        }
+        let r = self.section.outer_radius();
+        if !positive(r) || r >= 0.5 * self.spacing {
+            return Err((
+                "section",
+                format!(
+                    "rods {} m thick do not fit between crossings {} m apart",
+                    2.0 * r,
+                    self.spacing
+                ),
+            ));
+        }
+        Ok(())
+    }
+}
+
 /// Default locking angle, degrees: beyond about 15° of shear from closed, a timber or steel
 /// gridshell's rods touch side by side at realistic spacings (docs/gridshell.md).
 pub const DEFAULT_MIN_ANGLE_DEG: f64 = 15.0;
