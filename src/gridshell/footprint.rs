@@ -206,20 +206,8 @@ pub fn footprint(spec: &HemisphereSpec) -> Footprint {
         }
     }
 
-    let mut materials = BTreeMap::new();
-    materials.insert(
-        MATERIAL.to_string(),
-        Material {
-            young_modulus: spec.young_modulus,
-            poisson_ratio: Some(spec.poisson_ratio),
-            shear_modulus: None,
-            density: 0.0,
-            section: spec.section,
-            yield_strength: None,
-        },
-    );
     let scene = Scene {
-        materials,
+        materials: rod_material(spec.young_modulus, spec.poisson_ratio, spec.section),
         rods,
         joints,
         supports,
@@ -245,6 +233,25 @@ pub fn footprint(spec: &HemisphereSpec) -> Footprint {
         scene,
         crossings,
     }
+}
+
+/// The one weightless material every gridshell rod is made of, named [`MATERIAL`].
+pub(crate) fn rod_material(
+    young_modulus: f64,
+    poisson_ratio: f64,
+    section: Section,
+) -> BTreeMap<String, Material> {
+    BTreeMap::from([(
+        MATERIAL.to_string(),
+        Material {
+            young_modulus,
+            poisson_ratio: Some(poisson_ratio),
+            shear_modulus: None,
+            density: 0.0,
+            section,
+            yield_strength: None,
+        },
+    )])
 }
 
 /// The polyline through `keys` with every segment split into equal edges no longer than

@@ -12,10 +12,10 @@ use std::sync::Arc;
 
 use super::compass::Seed;
 use super::net::{self, Family, Layout, Net};
-use crate::gridshell::footprint::{subdivided, JointChoice, MATERIAL};
+use crate::gridshell::footprint::{rod_material, subdivided, JointChoice, MATERIAL};
 use crate::math::vec::{add, cross, dot, norm, normalize, scalef, sub};
 use crate::scene::types::{
-    Joint, LoadedSurface, Material, Rod, Scene, Section, Solver, Support, SupportKind, Target,
+    Joint, LoadedSurface, Rod, Scene, Section, Solver, Support, SupportKind, Target,
 };
 use crate::surface::Surface;
 
@@ -292,20 +292,8 @@ pub fn footprint(
             net.rods.len()
         ));
     }
-    let mut materials = BTreeMap::new();
-    materials.insert(
-        MATERIAL.to_string(),
-        Material {
-            young_modulus: spec.young_modulus,
-            poisson_ratio: Some(spec.poisson_ratio),
-            shear_modulus: None,
-            density: 0.0,
-            section: spec.section,
-            yield_strength: None,
-        },
-    );
     let scene = Scene {
-        materials,
+        materials: rod_material(spec.young_modulus, spec.poisson_ratio, spec.section),
         rods,
         joints,
         supports,
