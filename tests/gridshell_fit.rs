@@ -161,6 +161,7 @@ fn the_command_writes_results_cut_list_drawing_and_a_scene_that_solves_to_the_sa
         .arg(d.join("fp.ron"))
         .args(["--json"])
         .arg(d.join("fit.json"))
+        .args(["--modes", "3"])
         .output()
         .unwrap();
     assert!(
@@ -187,6 +188,11 @@ fn the_command_writes_results_cut_list_drawing_and_a_scene_that_solves_to_the_sa
         assert!(t["net"][k].is_number(), "{k}");
         assert_eq!(t["net"][k], r["net"][k]);
     }
+    // --modes: the shell's lowest eigenvalues, positive for the stable shell.
+    let st = &r["stability"];
+    assert_eq!(st["stable"], true, "{st}");
+    assert_eq!(st["eigenvalues"].as_array().unwrap().len(), 3);
+    assert!(st["eigenvalues"][0].as_f64().unwrap() > 0.0);
     let rods = t["net"]["rods"].as_u64().unwrap() as usize;
     let csv = std::fs::read_to_string(d.join("cut.csv")).unwrap();
     assert_eq!(csv.lines().count(), rods + 1);

@@ -81,6 +81,10 @@ pub struct FitArgs {
     /// when no output option is given).
     #[arg(long)]
     pub out_dir: Option<PathBuf>,
+    /// Eigen-analysis of the shell: the lowest K eigenvalues (N/m) as a "stability" block in
+    /// the results JSON, as for `rodnet solve --modes`.
+    #[arg(long, value_name = "K", value_parser = clap::value_parser!(u32).range(1..=200))]
+    pub modes: Option<u32>,
     #[arg(long)]
     pub quiet: bool,
     #[command(flatten)]
@@ -216,7 +220,7 @@ pub(super) fn run(a: FitArgs) -> i32 {
     let tracker = progress::Tracker::begin(1, show_progress(a.quiet));
     let result = job::run(&surface, &mesh_path, &spec, Some(tracker.hook()));
     tracker.finish();
-    let run = match result {
+    let mut run = match result {
         Ok(r) => r,
         Err(FitError::Net(e)) => return bad(format_args!("{}: {e}", a.target.display())),
         Err(FitError::Scene(e)) => {
@@ -227,6 +231,12 @@ pub(super) fn run(a: FitArgs) -> i32 {
             ))
         }
     };
+    if let (Some(k), true) = (a.modes, run.results.all_finite()) {
+        match crate::network::stability::analyse(&mut run.network, k as usize) {
+            Ok(st) => run.results.stability = Some((&st).into()),
+            Err(e) => return bad(format_args!("eigen-analysis: {e}")),
+        }
+    }
     if let Some(d) = creating {
         if let Err(e) = std::fs::create_dir_all(d) {
             return bad(format_args!("cannot create {}: {e}", d.display()));
