@@ -95,12 +95,13 @@ pub fn solve_scene(scene: &Scene, settings: &NewtonSettings) -> Result<Solution,
 /// Newton iterations [`solve_scene_from`] gives the start before it solves from rest.
 pub const RESTART_ITERATIONS: usize = 200;
 
-/// Why [`solve_scene_from`] could not start.
+/// Why [`solve_scene_from`] or [`states`] could not run.
 #[derive(Debug)]
-pub enum FromError {
+pub enum JobError {
     Scene(FieldError),
-    /// The initial state does not fit the scene.
-    Initial(String),
+    /// What the command asks cannot be done with this scene: an initial state that does not
+    /// fit it, a state search on a scene with contact or one whose own solve fails.
+    Refused(String),
 }
 
 /// Solves a scene from an earlier equilibrium of it (`rodnet solve --initial`): Newton at the
@@ -110,10 +111,10 @@ pub fn solve_scene_from(
     scene: &Scene,
     settings: &NewtonSettings,
     initial: &[crate::network::initial::RodState],
-) -> Result<Solution, FromError> {
-    let mut network = build_within_limit(scene, settings.ordering).map_err(FromError::Scene)?;
+) -> Result<Solution, JobError> {
+    let mut network = build_within_limit(scene, settings.ordering).map_err(JobError::Scene)?;
     let rest = network.model.state.clone();
-    crate::network::initial::place(&mut network, initial).map_err(FromError::Initial)?;
+    crate::network::initial::place(&mut network, initial).map_err(JobError::Refused)?;
     // A start that needs more than this is no restart: the solve from rest is then the better
     // path (a start that violates the scene's bounds, a load that changes the shape entirely).
     let budget = settings.max_iterations.min(RESTART_ITERATIONS);
@@ -226,10 +227,10 @@ pub fn states(
     scene: &Scene,
     settings: &NewtonSettings,
     max: usize,
-) -> Result<Vec<(crate::network::states::Found, Results)>, FromError> {
-    let mut network = build_within_limit(scene, settings.ordering).map_err(FromError::Scene)?;
+) -> Result<Vec<(crate::network::states::Found, Results)>, JobError> {
+    let mut network = build_within_limit(scene, settings.ordering).map_err(JobError::Scene)?;
     if network.model.contact.is_some() {
-        return Err(FromError::Initial(
+        return Err(JobError::Refused(
             "states does not handle contact or bounds yet (its eigen-analysis would have to              hold the active constraints)"
                 .into(),
         ));
@@ -238,12 +239,12 @@ pub fn states(
     let first = crate::network::solve_toward(&mut network, settings, scene.solver.buckle_toward);
     if !first.converged {
         let why = first.message.clone().unwrap_or_default();
-        return Err(FromError::Initial(format!(
+        return Err(JobError::Refused(format!(
             "the scene's own solve did not converge ({why}): no state to search from"
         )));
     }
     let found = crate::network::states::search(&mut network, settings, first, &rest, max)
-        .map_err(FromError::Initial)?;
+        .map_err(JobError::Refused)?;
     Ok(found
         .into_iter()
         .map(|f| {

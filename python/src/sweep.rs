@@ -44,7 +44,14 @@ pub fn hemisphere(
     let h = generator::hemisphere(&o)
         .map_err(|(name, m)| scene_error(py, None, None, None, Some(name), &m))?;
     let job = Job::Hemisphere(Box::new(h));
-    match solve_released(py, progress, |hook| run::solve(&job, None, hook))? {
+    let outcome = solve_released(py, progress, |hook| run::solve(&job, None, hook))?;
+    results_of(py, outcome)
+}
+
+/// A generator's solve as `Results`, or the exception its failure raises: a scene error names
+/// the generated scene's field, a failed solve is a `SolveError`.
+fn results_of(py: Python<'_>, outcome: Result<run::Solved, Failure>) -> PyResult<Results> {
+    match outcome {
         Ok(s) => Ok(Results::new(s)),
         Err(Failure::Scene(e)) => Err(scene_error(
             py,
@@ -317,16 +324,5 @@ pub fn fit(
             Err(job::FitError::Scene(e)) => Err(Failure::Scene(e)),
         }
     })?;
-    match outcome {
-        Ok(s) => Ok(Results::new(s)),
-        Err(Failure::Scene(e)) => Err(scene_error(
-            py,
-            None,
-            None,
-            None,
-            Some(e.path()),
-            &e.message,
-        )),
-        Err(Failure::Solve(m)) => Err(SolveError::new_err(m)),
-    }
+    results_of(py, outcome)
 }

@@ -137,8 +137,8 @@ fn solve_and_write(label: &str, sc: &Scene, source: &Source, outputs: Outputs, q
         None => job::solve_scene(sc, &settings).map_err(|e| source.describe(&e)),
         Some(f) => match read_initial(f) {
             Ok(rods) => job::solve_scene_from(sc, &settings, &rods).map_err(|e| match e {
-                job::FromError::Scene(e) => source.describe(&e),
-                job::FromError::Initial(m) => format!("--initial {}: {m}", f.display()),
+                job::JobError::Scene(e) => source.describe(&e),
+                job::JobError::Refused(m) => format!("--initial {}: {m}", f.display()),
             }),
             Err(e) => Err(e),
         },

@@ -7,7 +7,7 @@ use clap::Args;
 use super::output::{bad, check_outputs_creating, EXIT_OK};
 use crate::io::atomic;
 use crate::io::states::{StateJson, StatesJson};
-use crate::pipeline::{self, FromError};
+use crate::pipeline::{self, JobError};
 use crate::scene::{self, SceneError};
 
 #[derive(Args, Debug)]
@@ -53,8 +53,8 @@ pub fn run(a: &StatesArgs) -> i32 {
     let settings = pipeline::settings_of(&sc);
     let found = match pipeline::states(&sc, &settings, a.max as usize) {
         Ok(f) => f,
-        Err(FromError::Scene(e)) => return bad(SceneError::from_field(&label, &src, &e)),
-        Err(FromError::Initial(m)) => return bad(format_args!("{label}: {m}")),
+        Err(JobError::Scene(e)) => return bad(SceneError::from_field(&label, &src, &e)),
+        Err(JobError::Refused(m)) => return bad(format_args!("{label}: {m}")),
     };
     if let Some(d) = creating {
         if let Err(e) = std::fs::create_dir_all(d) {

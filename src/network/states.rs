@@ -1,6 +1,7 @@
-//! Multiple equilibria (`rodnet states`): from the scene's own equilibrium, the network is
-//! pushed along its lowest eigenmodes, both ways and by two amplitudes, and Newton (which leaves
-//! saddles along negative curvature) settles each push; states not seen before are kept and
+//! Multiple equilibria (`rodnet states`): from the scene's own equilibrium, the network's
+//! deflection from rest is reversed, and it is pushed along its lowest eigenmodes, both ways and
+//! by the amplitudes of [`AMPLITUDES`]; Newton (which leaves saddles along negative curvature)
+//! settles each start; states not seen before are kept and
 //! searched from in turn, breadth first. What it finds are the equilibria that such pushes reach:
 //! local minima, and the scene's own equilibrium whatever its index. It does not search for
 //! saddles between minima.
@@ -25,6 +26,8 @@ pub struct Found {
     pub lowest_eigenvalue: f64,
     /// How it was reached: "scene" or "state k, mode j, ±, amplitude".
     pub found_by: String,
+    /// Its lowest modes (over the free unknowns), the directions searched from it.
+    pub modes: Vec<Vec<f64>>,
 }
 
 /// Eigenmodes pushed along from each state.
@@ -49,6 +52,7 @@ pub fn search(
     };
     while next < found.len() && found.len() < max {
         let from = found[next].state.clone();
+        let modes = std::mem::take(&mut found[next].modes);
         // First the state's deflection from rest reversed: where a structure buckled one way,
         // the other way is the first state to look for (a snap-through needs a push past the
         // saddle between them, which pushes along the lowest modes may not reach).
@@ -61,8 +65,6 @@ pub fn search(
                 break;
             }
         }
-        net.model.state = from.clone();
-        let modes = analyse(net, MODES)?.modes;
         'modes: for (j, mode) in modes.iter().enumerate() {
             for sign in [1.0, -1.0] {
                 for &amp in &AMPLITUDES {
@@ -100,6 +102,7 @@ fn describe(net: &mut Network, report: NewtonReport, found_by: String) -> Result
         index_at_least: st.negative_at_least,
         lowest_eigenvalue: st.eigenvalues.first().copied().unwrap_or(f64::NAN),
         found_by,
+        modes: st.modes,
     })
 }
 
