@@ -244,17 +244,10 @@ fn onto_cap(model: &mut Model, rho: f64) {
 /// Turns the joint frames (Rigid, Hinge) from the surface normals `from` to `to`, so that a
 /// guess does not twist the rods against them.
 pub(crate) fn turn_frames(model: &mut Model, from: &dyn Fn(usize) -> [f64; 3], to: &[[f64; 3]]) {
-    let mut turned = vec![false; model.state.frames.len()];
-    for fb in &model.terms.frame_bend {
-        let f = fb.port.frame;
-        if !std::mem::replace(&mut turned[f], true) {
-            let node = model
-                .layout
-                .node_of(fb.vars[0])
-                .expect("a port's vertex node");
-            model.state.frames[f].commit(rotation_between(from(node), to[node]));
-        }
-    }
+    model.turn_frames(|m, fb| {
+        let node = m.layout.node_of(fb.vars[0]).expect("a port's vertex node");
+        rotation_between(from(node), to[node])
+    });
 }
 
 /// Adds one cap step's solve to the form finding's report (the last step's state fields win).

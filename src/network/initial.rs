@@ -89,21 +89,15 @@ pub fn place(net: &mut Network, rods: &[RodState]) -> Result<(), String> {
 /// its first port's tangent onto that edge's new direction: the results do not hold the frames,
 /// and a frame left at rest would bend every rod at a turned joint.
 fn turn_frames(net: &mut Network) {
-    let m = &mut net.model;
-    let mut turned = vec![false; m.state.frames.len()];
-    for fb in &m.terms.frame_bend {
-        let f = fb.port.frame;
-        if std::mem::replace(&mut turned[f], true) {
-            continue;
-        }
+    net.model.turn_frames(|m, fb| {
         let at = |k: usize| [0, 1, 2].map(|c| m.state.q[fb.vars[3 * k + c]]);
         let t = normalize(sub(at(1), at(0)));
-        let q = m.state.frames[f].rotation;
+        let q = m.state.frames[fb.port.frame].rotation;
         let rest = fb.port.rest[2];
         let d3 = add(
             add(scalef(q[0], rest[0]), scalef(q[1], rest[1])),
             scalef(q[2], rest[2]),
         );
-        m.state.frames[f].commit(rotation_between(normalize(d3), t));
-    }
+        rotation_between(normalize(d3), t)
+    });
 }

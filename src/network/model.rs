@@ -5,6 +5,7 @@
 
 use rayon::prelude::*;
 
+use crate::energy::frame_bend::FrameBend;
 use crate::energy::registry::{TermVisitor, Terms};
 use crate::energy::{Category, Term};
 use crate::math::vec::{norm, normalize, scalef, sub, transport};
@@ -346,6 +347,21 @@ impl Model {
             r = r.max(g / s);
         }
         r
+    }
+
+    /// Turns every vertex frame (clamps, Rigid and Hinge joints) once, by the rotation vector
+    /// `rotation` gives for the first frame-bend term of that frame: how a new starting state
+    /// (a net, an earlier result) carries the frames along with the nodes.
+    pub fn turn_frames(&mut self, rotation: impl Fn(&Model, &FrameBend) -> [f64; 3]) {
+        let mut turned = vec![false; self.state.frames.len()];
+        for k in 0..self.terms.frame_bend.len() {
+            let fb = &self.terms.frame_bend[k];
+            let f = fb.port.frame;
+            if !std::mem::replace(&mut turned[f], true) {
+                let w = rotation(self, fb);
+                self.state.frames[f].commit(w);
+            }
+        }
     }
 
     /// True when the continuation parameter changes nothing: no external load and no
