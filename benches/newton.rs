@@ -91,6 +91,7 @@ fn grid_scene(n: usize, subdivide: usize) -> Scene {
         bounds: vec![],
         target: None,
         reference: None,
+        stages: vec![],
         solver: Solver::default(),
     }
 }
@@ -178,6 +179,7 @@ fn cantilever_solve(bencher: divan::Bencher, n: usize) {
         bounds: vec![],
         target: None,
         reference: None,
+        stages: vec![],
         solver: Solver::default(),
     };
     let settings = NewtonSettings::default();

@@ -4,7 +4,7 @@
 
 use std::sync::atomic::{AtomicU64, Ordering};
 
-use crate::io::results::Results;
+use crate::io::results::{Results, StageJson};
 use crate::network::budget;
 use crate::network::equilibrium::Equilibrium;
 use crate::network::{build, Network};
@@ -82,14 +82,51 @@ pub fn settings_of(scene: &Scene) -> NewtonSettings {
         .load_steps(scene.solver.load_steps)
 }
 
-/// Builds a validated scene and solves it with Newton's method and load stepping.
+/// Builds a validated scene and solves it with Newton's method and load stepping, stage by
+/// stage when it has `stages` (the last stage's solution).
 pub fn solve_scene(scene: &Scene, settings: &NewtonSettings) -> Result<Solution, FieldError> {
-    run(
-        scene,
+    solve_stages(scene, settings, |_| {})
+}
+
+/// [`solve_scene`], handing each stage's solution to `done` as it completes when another stage
+/// follows it (the solution returned is the last stage solved: the scene's last, or the first
+/// that did not converge). Each stage starts from the previous one's equilibrium and follows
+/// its added loads from zero (`network::stage`).
+pub fn solve_stages(
+    scene: &Scene,
+    settings: &NewtonSettings,
+    mut done: impl FnMut(&Solution),
+) -> Result<Solution, FieldError> {
+    let base = scene.stage(0);
+    let mut sol = run(
+        &base,
         settings,
         |net, s| crate::network::solve_toward(net, s, scene.solver.buckle_toward),
         |_, _| {},
-    )
+    )?;
+    if scene.stages.is_empty() {
+        return Ok(sol);
+    }
+    let mut stages = Vec::new();
+    for k in 0..=scene.stages.len() {
+        if k > 0 {
+            let sc = scene.stage(k);
+            let mut network = build_within_limit(&sc, settings.ordering)?;
+            crate::network::stage::start_from(&sol.network, &mut network)
+                .map_err(|m| FieldError::global("stages", "", m))?;
+            let report = crate::network::solve(&mut network.model, settings);
+            sol = finish(network, &sc, report, |_, _| {});
+        }
+        let this = StageJson::of(k, scene.stage_name(k), &sol.results);
+        sol.results.stage = Some(this.clone());
+        stages.push(this);
+        if k == scene.stages.len() || !sol.results.converged {
+            break;
+        }
+        done(&sol);
+    }
+    sol.results.stages = stages;
+    Ok(sol)
 }
 
 /// Newton iterations [`solve_scene_from`] gives the start before it solves from rest.
@@ -228,6 +265,8 @@ pub fn states(
     settings: &NewtonSettings,
     max: usize,
 ) -> Result<Vec<(crate::network::states::Found, Results)>, JobError> {
+    // The states of the last load case: a staged scene's loads all together.
+    let scene = &scene.all_stages();
     let mut network = build_within_limit(scene, settings.ordering).map_err(JobError::Scene)?;
     if network.model.contact.is_some() {
         return Err(JobError::Refused(
@@ -276,6 +315,8 @@ pub enum BuckleError {
 pub fn buckle(scene: &Scene, k: usize, linear_only: bool) -> Result<Buckling, BuckleError> {
     use crate::network::stability;
     let t0 = std::time::Instant::now();
+    // The factors multiply a staged scene's loads all together.
+    let scene = &scene.all_stages();
     let settings = settings_of(scene);
     let mut net = build_within_limit(scene, settings.ordering).map_err(BuckleError::Scene)?;
     if net.model.contact.is_some() {
@@ -368,7 +409,8 @@ pub fn indent(
         depth,
         steps,
     };
-    let curve = push(sc, &sol.network, &how, &settings).map_err(IndentError::Push)?;
+    // The push holds every stage's loads at their full values.
+    let curve = push(&sc.all_stages(), &sol.network, &how, &settings).map_err(IndentError::Push)?;
     let (pts, lims) = crate::io::indent::IndentJson::curve_of(&curve);
     let json = crate::io::indent::IndentJson {
         rod,

@@ -8,7 +8,8 @@ mod common;
 use common::Rng;
 use rodnet::energy::{
     bend::Bend, frame_bend::FrameBend, frame_twist::FrameTwist, point_load::PointLoad,
-    spring::Spring, stretch::Stretch, torque::Torque, twist::Twist, Term,
+    rotational_spring::RotationalSpring, spring::Spring, stretch::Stretch, torque::Torque,
+    twist::Twist, Term,
 };
 use rodnet::math::vec::*;
 use rodnet::math::HD;
@@ -352,6 +353,7 @@ fn external_loads_fd() {
     let sp = Spring {
         vars: [0, 1, 2],
         stiffness: [3.0e4, 0.0, 7.5e2],
+        axes: [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
         anchor: [rng.vec3(1.0), rng.vec3(1.0)],
     };
     check(&sp, &st, rng.vec3(2.0), "spring");
@@ -441,4 +443,107 @@ fn joint_terms_fd() {
             "joint translation",
         );
     }
+}
+
+/// Orthonormal axes turned by a random rotation.
+fn random_axes(rng: &mut Rng) -> [[f64; 3]; 3] {
+    random_rotation(rng)
+}
+
+#[test]
+fn spring_along_oblique_axes_fd() {
+    let mut rng = Rng::new(11);
+    let st = State {
+        q: vec![],
+        edges: vec![],
+        frames: vec![],
+        twist_prev: vec![],
+        load_factor: 0.4,
+    };
+    let sp = Spring {
+        vars: [0, 1, 2],
+        stiffness: [2.0e3, 5.0e1, 0.0],
+        axes: random_axes(&mut rng),
+        anchor: [rng.vec3(1.0), rng.vec3(1.0)],
+    };
+    let x = rng.vec3(2.0);
+    check(&sp, &st, x, "oblique spring");
+    // Its reported force is minus its gradient, and it has none along the free axis.
+    let g = sp.eval(&st, &HD::<3>::vars(&x)).g;
+    let f = sp.force(x, 0.4);
+    for k in 0..3 {
+        assert!((f[k] + g[k]).abs() <= 1e-12 * norm(g));
+    }
+    assert!(dot(f, sp.axes[2]).abs() <= 1e-12 * norm(f));
+}
+
+fn rotational_state(q: Frame, lambda: f64) -> State {
+    State {
+        q: vec![],
+        edges: vec![],
+        frames: vec![FrameRef {
+            rotation: q,
+            accumulated: [0.0; 3],
+        }],
+        twist_prev: vec![],
+        load_factor: lambda,
+    }
+}
+
+/// Bent (a general turn, a turned anchor), near-singular (turns of 1e-4 and 1e-3 rad, where the
+/// series for θ/sin θ hands over to the closed form) and large (2.5 and 3.0 rad) states.
+#[test]
+fn rotational_spring_fd() {
+    let mut rng = Rng::new(12);
+    let identity = [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]];
+    let spring = |rng: &mut Rng, rotate_by: [f64; 3]| RotationalSpring {
+        vars: [0, 1, 2],
+        frame: 0,
+        axes: random_axes(rng),
+        stiffness: [
+            rng.range(0.5, 2.0),
+            rng.range(0.5, 2.0),
+            rng.range(0.5, 2.0),
+        ],
+        rotate_by,
+    };
+    // A general state: the frame's reference turned, an increment on top, the anchor turning.
+    let reference = random_rotation(&mut rng);
+    let st = rotational_state(reference, 0.7);
+    let turn = rng.vec3(0.8);
+    let t = spring(&mut rng, turn);
+    check(&t, &st, rng.vec3(0.3), "rotational spring, general");
+    // Relative turns of a given angle about a random axis (reference at rest, anchor fixed).
+    for angle in [1e-4, 9.99e-4, 1.001e-3, 0.3, 2.5, 3.0] {
+        let st = rotational_state(identity, 1.0);
+        let t = spring(&mut rng, [0.0; 3]);
+        let w = scalef(normalize(rng.vec3(1.0)), angle);
+        check(
+            &t,
+            &st,
+            w,
+            &format!("rotational spring, turned {angle} rad"),
+        );
+        // The energy is exactly ½ Σ kᵢ (θ a·eᵢ)² (the logarithm, not sin θ).
+        let want: f64 = (0..3)
+            .map(|i| 0.5 * t.stiffness[i] * dot(w, t.axes[i]).powi(2))
+            .sum();
+        let got = t.eval::<f64>(&st, &w);
+        assert!(
+            (got - want).abs() <= 1e-12 * want,
+            "turned {angle} rad: energy {got:.15e}, want {want:.15e}"
+        );
+    }
+    // The same relative turn reached by turning the frame's reference instead of its increment.
+    let w = [0.4, -1.1, 0.7];
+    let st = rotational_state(frame_rotate(w, &identity), 1.0);
+    let t = spring(&mut rng, [0.0; 3]);
+    let want: f64 = (0..3)
+        .map(|i| 0.5 * t.stiffness[i] * dot(w, t.axes[i]).powi(2))
+        .sum();
+    assert!((t.eval::<f64>(&st, &[0.0; 3]) - want).abs() <= 1e-12 * want);
+    check(&t, &st, [0.0; 3], "rotational spring, reference turned");
+    // An anchor turned by the frame's own turn holds no energy.
+    let t = RotationalSpring { rotate_by: w, ..t };
+    assert!(t.eval::<f64>(&st, &[0.0; 3]).abs() < 1e-25);
 }

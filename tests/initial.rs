@@ -209,3 +209,42 @@ fn results_of_another_scene_are_refused_before_solving() {
     let out = solve(Path::new("networks/cantilever.ron"), &a, Some(&a));
     assert_eq!(out.status.code(), Some(2));
 }
+
+/// A restart keeps clamped frames where their supports hold them (they are not turned with the
+/// nodes) and turns free frames where their rod arrives at the vertex the right way round: the
+/// erected arch of `networks/arch_erect_then_load.ron` (clamps at both ends, one moved) restarts
+/// from its own result without a single Newton iteration.
+#[test]
+fn a_clamped_arch_restarts_from_its_own_result() {
+    use rodnet::network::initial::RodState;
+    use rodnet::pipeline::{settings_of, solve_scene, solve_scene_from};
+    let path = concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/networks/arch_erect_then_load.ron"
+    );
+    let sc = rodnet::scene::load(std::path::Path::new(path))
+        .unwrap()
+        .0
+        .stage(0);
+    let first = solve_scene(&sc, &settings_of(&sc)).unwrap();
+    assert!(first.results.converged);
+    let rods: Vec<RodState> = first
+        .results
+        .rods
+        .iter()
+        .map(|r| RodState {
+            name: r.name.clone(),
+            points: r.points.clone(),
+            twist: r.twist.clone(),
+        })
+        .collect();
+    let again = solve_scene_from(&sc, &settings_of(&sc), &rods).unwrap_or_else(|_| panic!());
+    assert!(again.results.converged);
+    assert_eq!(
+        again.results.iterations, 0,
+        "{:?}",
+        again.results.solver.message
+    );
+    let (a, b) = (first.results.energy.total, again.results.energy.total);
+    assert!((a - b).abs() <= 1e-12 * a, "{a} {b}");
+}

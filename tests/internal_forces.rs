@@ -356,7 +356,8 @@ fn networks_balance_at_their_free_rod_ends() {
                 let mut force = [0.0; 3];
                 let mut moment = [0.0; 3];
                 let add = |a: &mut [f64; 3], v: [f64; 3]| (0..3).for_each(|i| a[i] += v[i]);
-                for l in &s.loads {
+                // A staged scene ends under every stage's loads.
+                for l in &s.all_stages().loads {
                     match l {
                         Load::Force {
                             rod: n,

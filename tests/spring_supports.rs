@@ -179,7 +179,20 @@ fn bad_springs_are_refused_at_their_field() {
     std::fs::create_dir_all(&d).unwrap();
     for (kind, want) in [
         ("Spring(stiffness: (-1.0, 0.0, 0.0))", "non-negative"),
-        ("Spring(stiffness: (0.0, 0.0, 0.0))", "not all zero"),
+        ("Spring(stiffness: (0.0, 0.0, 0.0))", "needs a non-zero"),
+        ("Spring(rotational: Some((1.0, -2.0, 0.0)))", "non-negative"),
+        (
+            "Spring(rotational: Some((1.0, 1.0, 1.0)), axes: Some(((1,0,0), (1,1,0), (0,0,1))))",
+            "perpendicular",
+        ),
+        (
+            "Spring(stiffness: (1.0, 1.0, 1.0), axes: Some(((1,0,0), (0,0,0), (0,0,1))))",
+            "axes[1]",
+        ),
+        (
+            "Spring(stiffness: (1.0, 1.0, 1.0)), rotate_by: Some((0.0, 0.0, 1.0))",
+            "rotate_by",
+        ),
     ] {
         let text = format!(
             "Scene({}\n rods: [Rod(name: \"b\", material: \"m\", points: [(0,0,0), (1,0,0)])],\n supports: [Support(rod: \"b\", vertex: 0, kind: Clamp),\n  Support(rod: \"b\", vertex: 1, kind: {kind})])",
@@ -195,7 +208,7 @@ fn bad_springs_are_refused_at_their_field() {
         let err = String::from_utf8_lossy(&out.stderr);
         assert_eq!(out.status.code(), Some(2), "{err}");
         assert!(
-            err.contains(want) && err.contains("supports[1].kind") && err.contains(":4:"),
+            err.contains(want) && err.contains("supports[1].") && err.contains(":4:"),
             "{err}"
         );
     }

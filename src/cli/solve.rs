@@ -34,6 +34,45 @@ impl Outputs {
             ("--modes-obj", &self.modes_obj),
         ])
     }
+
+    /// The results files of one solution: each of `--json`, `--obj`, `--csv`, `--forces-csv`
+    /// given, at its path with `.STAGE` before the extension when `stage` is named.
+    fn results_files(
+        &self,
+        sol: &job::Solution,
+        stage: Option<&str>,
+    ) -> Result<Vec<(PathBuf, Vec<u8>)>, String> {
+        let at = |p: &Path| stage.map_or_else(|| p.to_path_buf(), |s| stage_path(p, s));
+        let mut files = Vec::new();
+        if let Some(p) = &self.json {
+            let b = serde_json::to_vec_pretty(&sol.results)
+                .map_err(|e| format!("cannot encode the results as JSON: {e}"))?;
+            files.push((at(p), b));
+        }
+        if let Some(p) = &self.obj {
+            files.push((at(p), obj::to_obj(&sol.results).into_bytes()));
+        }
+        if let Some(p) = &self.csv {
+            files.push((at(p), csv::to_csv(&sol.equilibrium).into_bytes()));
+        }
+        if let Some(p) = &self.forces_csv {
+            files.push((at(p), csv::to_forces_csv(&sol.equilibrium).into_bytes()));
+        }
+        Ok(files)
+    }
+}
+
+/// Where a stage's copy of an output goes: `out.json` → `out.STAGE.json`.
+fn stage_path(p: &Path, stage: &str) -> PathBuf {
+    let stem = p
+        .file_stem()
+        .map(|s| s.to_string_lossy().into_owned())
+        .unwrap_or_default();
+    let name = match p.extension() {
+        Some(e) => format!("{stem}.{stage}.{}", e.to_string_lossy()),
+        None => format!("{stem}.{stage}"),
+    };
+    p.with_file_name(name)
 }
 
 /// Where the scene came from, to turn errors found while building it into messages.
@@ -83,6 +122,31 @@ fn solve(path: &Path, outputs: Outputs, quiet: bool) -> i32 {
         Ok(s) => s,
         Err(e) => return bad(e),
     };
+    if !sc.stages.is_empty() {
+        if let Some(f) = &outputs.initial {
+            return bad(format_args!(
+                "--initial {}: a scene with `stages` starts from rest (restarting a staged run \
+                 is not supported yet); remove --initial or the stages",
+                f.display()
+            ));
+        }
+        // Every stage but the last writes its own copies of the outputs.
+        let staged: Vec<(String, PathBuf)> = (0..sc.stages.len())
+            .flat_map(|k| {
+                let name = sc.stage_name(k).to_string();
+                outputs
+                    .list()
+                    .into_iter()
+                    .filter(|(flag, _)| *flag != "--modes-obj")
+                    .map(move |(flag, p)| (format!("{flag} (stage {name})"), stage_path(p, &name)))
+            })
+            .collect();
+        let mut all: Vec<(&str, &Path)> = outputs.list();
+        all.extend(staged.iter().map(|(f, p)| (f.as_str(), p.as_path())));
+        if let Err(e) = check_outputs(&all, &inputs) {
+            return bad(e);
+        }
+    }
     let file = path.display().to_string();
     for w in scene::validate::warnings(&sc) {
         eprintln!("warning: {}", SceneError::from_field(&file, &src, &w));
@@ -133,8 +197,27 @@ fn solve_and_write(label: &str, sc: &Scene, source: &Source, outputs: Outputs, q
     let mut settings = job::settings_of(sc);
     let tracker = progress::Tracker::begin(settings.load_steps, show_progress(quiet));
     settings.progress = Some(tracker.hook());
+    let mut stage_error = None;
     let result = match &outputs.initial {
-        None => job::solve_scene(sc, &settings).map_err(|e| source.describe(&e)),
+        None => job::solve_stages(sc, &settings, |sol| {
+            // A stage's results are written as it completes (the last with the others below).
+            let name = sol.results.stage.as_ref().map_or("", |s| s.name.as_str());
+            let written = outputs
+                .results_files(sol, Some(name))
+                .and_then(|files| write_files(&files));
+            if let Err(e) = written {
+                stage_error.get_or_insert(e);
+            }
+            if let Some(st) = &sol.results.stage {
+                if !quiet {
+                    eprintln!(
+                        "rodnet: stage {} \"{}\" converged in {} iterations, energy {:.9e} J",
+                        st.index, st.name, st.iterations, st.energy
+                    );
+                }
+            }
+        })
+        .map_err(|e| source.describe(&e)),
         Some(f) => match read_initial(f) {
             Ok(rods) => job::solve_scene_from(sc, &settings, &rods).map_err(|e| match e {
                 job::JobError::Scene(e) => source.describe(&e),
@@ -148,6 +231,9 @@ fn solve_and_write(label: &str, sc: &Scene, source: &Source, outputs: Outputs, q
         Ok(s) => s,
         Err(e) => return bad(e),
     };
+    if let Some(e) = stage_error {
+        return bad(e);
+    }
     let modes = match outputs.modes {
         Some(k) if sol.results.all_finite() => match job::analyse_modes(&mut sol, k) {
             Ok(st) => Some(st),
@@ -178,22 +264,10 @@ fn solve_and_write(label: &str, sc: &Scene, source: &Source, outputs: Outputs, q
         );
         return EXIT_NOT_CONVERGED;
     }
-    let mut files: Vec<(&Path, Vec<u8>)> = Vec::new();
-    if let Some(p) = &outputs.json {
-        match serde_json::to_vec_pretty(r) {
-            Ok(b) => files.push((p, b)),
-            Err(e) => return bad(format_args!("cannot encode the results as JSON: {e}")),
-        }
-    }
-    if let Some(p) = &outputs.obj {
-        files.push((p, obj::to_obj(r).into_bytes()));
-    }
-    if let Some(p) = &outputs.csv {
-        files.push((p, csv::to_csv(&sol.equilibrium).into_bytes()));
-    }
-    if let Some(p) = &outputs.forces_csv {
-        files.push((p, csv::to_forces_csv(&sol.equilibrium).into_bytes()));
-    }
+    let mut files = match outputs.results_files(&sol, None) {
+        Ok(f) => f,
+        Err(e) => return bad(e),
+    };
     if let (Some(p), Some(st)) = (&outputs.modes_obj, &modes) {
         let labels: Vec<String> = st
             .eigenvalues
@@ -202,12 +276,12 @@ fn solve_and_write(label: &str, sc: &Scene, source: &Source, outputs: Outputs, q
             .map(|(i, l)| format!("mode_{} eigenvalue {l:.6e} N/m", i + 1))
             .collect();
         files.push((
-            p,
+            p.clone(),
             job::modes_obj(&sol.network, &labels, &st.modes).into_bytes(),
         ));
     }
-    if let Err((p, e)) = atomic::write_all(&files) {
-        return bad(format_args!("cannot write {}: {e}", p.display()));
+    if let Err(e) = write_files(&files) {
+        return bad(e);
     }
     println!(
         "{label}: {} in {} iterations over {} load step(s), relative residual {:.3e}, energy {:.9e} J, {:.3} s{}",
@@ -239,6 +313,10 @@ fn solve_and_write(label: &str, sc: &Scene, source: &Source, outputs: Outputs, q
         );
         EXIT_NOT_CONVERGED
     }
+}
+
+fn write_files(files: &[(PathBuf, Vec<u8>)]) -> Result<(), String> {
+    atomic::write_all(files).map_err(|(p, e)| format!("cannot write {}: {e}", p.display()))
 }
 
 /// The rods of an earlier results JSON (`--initial`).

@@ -120,10 +120,11 @@ pub fn run(a: &ConvergenceArgs) -> i32 {
                         scene::SceneError::from_field(&file, &src, &w)
                     );
                 }
+                // A study refines one load case: a staged scene's loads all together.
                 Problem::Scene {
                     file,
                     src,
-                    scene: Box::new(scene),
+                    scene: Box::new(scene.all_stages()),
                 }
             }
             Err(e) => return bad(e),

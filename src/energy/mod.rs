@@ -10,6 +10,7 @@ pub mod joint_rotation;
 pub mod joint_translation;
 pub mod point_load;
 pub mod registry;
+pub mod rotational_spring;
 pub mod spring;
 pub mod stretch;
 pub mod torque;

@@ -5,8 +5,9 @@
 
 use super::{
     bend::Bend, frame_bend::FrameBend, frame_twist::FrameTwist, joint_rotation::JointRotation,
-    joint_translation::JointTranslation, point_load::PointLoad, spring::Spring, stretch::Stretch,
-    torque::Torque, twist::Twist, Term,
+    joint_translation::JointTranslation, point_load::PointLoad,
+    rotational_spring::RotationalSpring, spring::Spring, stretch::Stretch, torque::Torque,
+    twist::Twist, Term,
 };
 
 /// Something done to every kind of term in turn; `kind` is the kind's index in [`Terms::NAMES`].
@@ -49,6 +50,7 @@ term_kinds! {
     joint_rotation: JointRotation = 6,
     joint_translation: JointTranslation = 6,
     springs: Spring = 3,
+    rotational_springs: RotationalSpring = 3,
     loads: PointLoad = 3,
     torques: Torque = 3,
 }

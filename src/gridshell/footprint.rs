@@ -219,6 +219,7 @@ pub fn footprint(spec: &HemisphereSpec) -> Footprint {
             radius: spec.radius,
         }),
         reference: None,
+        stages: Vec::new(),
         solver: Solver {
             tolerance: spec.tolerance,
             max_iterations: spec.max_iterations,

@@ -290,6 +290,41 @@ pub struct Results {
     /// Scenes with a material's `yield_strength`: the most utilized edge.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub utilization: Option<Utilization>,
+    /// Scenes with `stages`: the stage these results are of.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub stage: Option<StageJson>,
+    /// Scenes with `stages`, in the last stage's results: every stage solved, in order.
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub stages: Vec<StageJson>,
+}
+
+/// One load stage's outcome (`stage`, `stages`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct StageJson {
+    /// 0 for the scene's own loads ("base"), k for `stages[k − 1]`.
+    pub index: usize,
+    pub name: String,
+    pub converged: bool,
+    pub iterations: usize,
+    pub residual: f64,
+    /// s.
+    pub seconds: f64,
+    /// J.
+    pub energy: f64,
+}
+
+impl StageJson {
+    pub fn of(index: usize, name: &str, r: &Results) -> StageJson {
+        StageJson {
+            index,
+            name: name.to_string(),
+            converged: r.converged,
+            iterations: r.iterations,
+            residual: r.residual,
+            seconds: r.seconds,
+            energy: r.energy.total,
+        }
+    }
 }
 
 /// The `reference` block of the results JSON.
@@ -400,6 +435,8 @@ impl Results {
             stability: None,
             warnings: Vec::new(),
             utilization: eq.utilization.clone(),
+            stage: None,
+            stages: Vec::new(),
         }
     }
 

@@ -36,6 +36,9 @@ pub struct SupportInfo {
     pub frame: Option<usize>,
     /// An elastic support: its index in `Terms::springs` (its reaction is its spring force).
     pub spring: Option<usize>,
+    /// A rotational elastic support: its index in `Terms::rotational_springs` (its reaction
+    /// moment is the spring's moment); `frame` is then the frame it turns with.
+    pub rotational: Option<usize>,
 }
 
 /// The node held in place to remove the rigid translations of an unsupported structure.

@@ -91,7 +91,9 @@ pub fn place(net: &mut Network, rods: &[RodState]) -> Result<(), String> {
 fn turn_frames(net: &mut Network) {
     net.model.turn_frames(|m, fb| {
         let at = |k: usize| [0, 1, 2].map(|c| m.state.q[fb.vars[3 * k + c]]);
-        let t = normalize(sub(at(1), at(0)));
+        // The frame's d3 is the tangent into the edge times the stencil's sign (−1 where the
+        // rod arrives at the vertex, as at a rod's last node).
+        let t = scalef(normalize(sub(at(1), at(0))), fb.sign);
         let q = m.state.frames[fb.port.frame].rotation;
         let rest = fb.port.rest[2];
         let d3 = add(

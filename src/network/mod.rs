@@ -19,6 +19,7 @@ pub mod problem;
 pub mod projection;
 pub mod rest;
 pub mod stability;
+pub mod stage;
 pub mod states;
 
 pub use buckle::solve as solve_toward;

@@ -74,6 +74,24 @@ pub struct Prescribed {
     pub end: f64,
 }
 
+/// The values each load term starts and ends a load stage at: (from, to) per `terms.loads`
+/// force and per `terms.torques` torque.
+#[derive(Debug, Clone, Default)]
+pub struct LoadRamp {
+    pub loads: Vec<[[f64; 3]; 2]>,
+    pub torques: Vec<[[f64; 3]; 2]>,
+}
+
+impl LoadRamp {
+    fn at(ends: &[[f64; 3]; 2], lambda: f64) -> [f64; 3] {
+        std::array::from_fn(|k| ends[0][k] + lambda * (ends[1][k] - ends[0][k]))
+    }
+
+    fn is_trivial(&self) -> bool {
+        self.loads.iter().chain(&self.torques).all(|[a, b]| a == b)
+    }
+}
+
 /// Characteristic length (m) and force (N) that make residuals relative.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Scales {
@@ -95,6 +113,10 @@ pub struct Model {
     /// the scene's loads and prescribed motions stay at λ = 1 and only these motions follow the
     /// continuation parameter.
     pub staged: Vec<Prescribed>,
+    /// A load stage on top of an earlier stage's equilibrium (`network/stage.rs`): when set,
+    /// the load terms go from that stage's values to their own with the continuation
+    /// parameter, and the prescribed motions stay at λ = 1.
+    pub ramp: Option<LoadRamp>,
     /// Global edges as (node a, node b).
     pub edge_nodes: Vec<[usize; 2]>,
     /// Rest length of each global edge.
@@ -139,6 +161,7 @@ impl Model {
             prescribed: p.prescribed,
             prescribed_rotations: p.prescribed_rotations,
             staged: Vec::new(),
+            ramp: None,
             edge_nodes: p.edge_nodes,
             rest_lengths: p.rest_lengths,
             length_scale: p.scales.length,
@@ -259,8 +282,17 @@ impl Model {
 
     /// Sets the load factor and the prescribed variables for continuation parameter `lambda`.
     pub fn set_load(&mut self, lambda: f64) {
-        let scene = if self.staged.is_empty() { lambda } else { 1.0 };
+        let held = !self.staged.is_empty() || self.ramp.is_some();
+        let scene = if held { 1.0 } else { lambda };
         self.state.load_factor = scene;
+        if let Some(r) = &self.ramp {
+            for (l, ends) in self.terms.loads.iter_mut().zip(&r.loads) {
+                l.force = LoadRamp::at(ends, lambda);
+            }
+            for (t, ends) in self.terms.torques.iter_mut().zip(&r.torques) {
+                t.torque = LoadRamp::at(ends, lambda);
+            }
+        }
         for p in &self.prescribed {
             self.state.q[p.var] = p.start + scene * (p.end - p.start);
         }
@@ -349,15 +381,17 @@ impl Model {
         r
     }
 
-    /// Turns every vertex frame (clamps, Rigid and Hinge joints) once, by the rotation vector
-    /// `rotation` gives for the first frame-bend term of that frame: how a new starting state
-    /// (a net, an earlier result) carries the frames along with the nodes.
+    /// Turns every free vertex frame (Rigid and Hinge joints, torqued and spring-held
+    /// vertices) once, by the rotation vector `rotation` gives for the first frame-bend term of
+    /// that frame: how a new starting state (a net, an earlier result) carries the frames along
+    /// with the nodes. Clamped frames keep the orientation their supports prescribe.
     pub fn turn_frames(&mut self, rotation: impl Fn(&Model, &FrameBend) -> [f64; 3]) {
         let mut turned = vec![false; self.state.frames.len()];
         for k in 0..self.terms.frame_bend.len() {
             let fb = &self.terms.frame_bend[k];
             let f = fb.port.frame;
-            if !std::mem::replace(&mut turned[f], true) {
+            let held = self.free[self.layout.frame(f)[0]] == FIXED;
+            if !std::mem::replace(&mut turned[f], true) && !held {
                 let w = rotation(self, fb);
                 self.state.frames[f].commit(w);
             }
@@ -370,6 +404,9 @@ impl Model {
         if !self.staged.is_empty() {
             return self.staged.iter().all(|p| p.start == p.end);
         }
+        if let Some(r) = &self.ramp {
+            return r.is_trivial();
+        }
         let external = self.count_of(Category::External);
         external == 0
             && self.prescribed.iter().all(|p| p.start == p.end)
@@ -378,6 +415,11 @@ impl Model {
                 .springs
                 .iter()
                 .all(|s| s.anchor[0] == s.anchor[1])
+            && self
+                .terms
+                .rotational_springs
+                .iter()
+                .all(|s| s.rotate_by == [0.0; 3])
             && self
                 .prescribed_rotations
                 .iter()

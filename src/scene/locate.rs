@@ -141,32 +141,37 @@ pub fn locate(src: &str, section: &str, item: &Item, field: &str) -> Option<(usi
         return Some(field_in(&toks, k, field).unwrap_or(section_pos));
     }
     // The section's value must be a bracketed list or map.
-    let mut k = start + 2;
+    let k = start + 2;
     if k >= toks.len() || toks[k].0 != Tok::Open {
         return Some(section_pos);
     }
-    k += 1;
+    match element_start(&toks, k + 1, item) {
+        Some(e) => Some(field_in(&toks, e, field).unwrap_or((toks[e].1, toks[e].2))),
+        None => Some(section_pos),
+    }
+}
+
+/// The first token of element `item` of the list or map whose first token is `k`.
+fn element_start(toks: &[(Tok, usize, usize)], mut k: usize, item: &Item) -> Option<usize> {
     let mut index = 0;
     let mut d = 0usize;
     let mut elem_start = k;
     while k < toks.len() {
-        let at_elem_start = d == 0 && k == elem_start;
-        if at_elem_start {
+        if d == 0 && k == elem_start {
             let hit = match item {
                 Item::Index(i) => *i == index,
                 Item::Key(key) => toks[k].0 == Tok::Str(key.clone()),
                 Item::None => false,
             };
             if hit {
-                let pos = (toks[k].1, toks[k].2);
-                return Some(field_in(&toks, k, field).unwrap_or(pos));
+                return Some(k);
             }
         }
         match toks[k].0 {
             Tok::Open => d += 1,
             Tok::Close => {
                 if d == 0 {
-                    break;
+                    return None;
                 }
                 d -= 1;
             }
@@ -178,7 +183,7 @@ pub fn locate(src: &str, section: &str, item: &Item, field: &str) -> Option<(usi
         }
         k += 1;
     }
-    Some(section_pos)
+    None
 }
 
 /// The first key that repeats an earlier key of the top-level map `section`, with its line and
@@ -229,10 +234,29 @@ pub fn duplicate_key(src: &str, section: &str) -> Option<(String, usize, usize)>
     None
 }
 
-/// Position of `field:` one level inside the element starting at token `k`.
-fn field_in(toks: &[(Tok, usize, usize)], mut k: usize, field: &str) -> Option<(usize, usize)> {
+/// Position of `field:` one level inside the element starting at token `k`. A nested path
+/// `list[i].field` (a stage's `loads[2].force`) goes on into element i of that list.
+fn field_in(toks: &[(Tok, usize, usize)], k: usize, field: &str) -> Option<(usize, usize)> {
+    field_token(toks, k, field).map(|t| (toks[t].1, toks[t].2))
+}
+
+fn field_token(toks: &[(Tok, usize, usize)], mut k: usize, field: &str) -> Option<usize> {
     if field.is_empty() {
         return None;
+    }
+    if let Some((head, tail)) = field.split_once('[') {
+        let t = field_token(toks, k, head)?;
+        let (index, rest) = tail.split_once(']')?;
+        let index: usize = index.parse().ok()?;
+        let rest = rest.strip_prefix('.').unwrap_or(rest);
+        let open = t + 2;
+        if toks.get(open).map(|x| &x.0) != Some(&Tok::Open) {
+            return Some(t);
+        }
+        let Some(e) = element_start(toks, open + 1, &Item::Index(index)) else {
+            return Some(t);
+        };
+        return Some(field_token(toks, e, rest).unwrap_or(e));
     }
     let mut d = 0usize;
     while k + 1 < toks.len() {
@@ -246,7 +270,7 @@ fn field_in(toks: &[(Tok, usize, usize)], mut k: usize, field: &str) -> Option<(
             }
             Tok::Comma if d == 0 => return None,
             Tok::Ident(s) if d == 1 && s == field && toks[k + 1].0 == Tok::Colon => {
-                return Some((toks[k].1, toks[k].2));
+                return Some(k);
             }
             _ => {}
         }
@@ -282,6 +306,24 @@ mod tests {
             Some((2, 56))
         );
         assert_eq!(locate(src, "rods", &Item::Index(7), "x"), Some((3, 5)));
+    }
+
+    #[test]
+    fn finds_nested_fields_of_list_elements() {
+        let src = r#"Scene(
+    stages: [
+        Stage(name: "a", loads: [Gravity(g: (0, 0, -9.8))]),
+        Stage(name: "b",
+              loads: [Force(rod: "r", vertex: 0, force: (1, 0, 0)),
+                      Force(rod: "r", vertex: 9, force: (0, 0, 1))]),
+    ],
+)"#;
+        let at = |field: &str| locate(src, "stages", &Item::Index(1), field);
+        assert_eq!(at("loads[1].vertex"), Some((6, 39)));
+        assert_eq!(at("loads[0]"), Some((5, 23)));
+        // Missing pieces fall back to the nearest enclosing item found.
+        assert_eq!(at("loads[5].force"), Some((5, 15)));
+        assert_eq!(at("loads[0].nothing"), Some((5, 23)));
     }
 
     #[test]

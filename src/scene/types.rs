@@ -32,6 +32,46 @@ pub struct Scene {
     pub reference: Option<Reference>,
     #[serde(default)]
     pub solver: Solver,
+    /// (extension) Later load stages, each solved from the equilibrium of the one before with
+    /// its loads added to everything before it (docs/scene-format.md, "Stages").
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub stages: Vec<Stage>,
+}
+
+/// A load stage: loads added, from the previous stage's equilibrium, to all loads before.
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+#[serde(deny_unknown_fields)]
+pub struct Stage {
+    /// Letters, digits, `-` and `_` (it names the stage's output files).
+    pub name: String,
+    #[serde(default)]
+    pub loads: Vec<Load>,
+}
+
+impl Scene {
+    /// The scene of stage `k` (0: the scene's own loads; k: those plus the loads of stages
+    /// 1 … k), with no stages of its own.
+    pub fn stage(&self, k: usize) -> Scene {
+        let mut s = self.clone();
+        s.stages.clear();
+        for st in self.stages.iter().take(k) {
+            s.loads.extend(st.loads.iter().cloned());
+        }
+        s
+    }
+
+    /// The scene with every stage's loads applied at once (commands that solve one load case).
+    pub fn all_stages(&self) -> Scene {
+        self.stage(self.stages.len())
+    }
+
+    /// The name of stage `k`: "base" for the scene's own loads.
+    pub fn stage_name(&self, k: usize) -> &str {
+        match k {
+            0 => "base",
+            _ => &self.stages[k - 1].name,
+        }
+    }
 }
 
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
@@ -191,15 +231,43 @@ pub enum SupportKind {
     Roller {
         normal: [f64; 3],
     },
-    /// Springs along the world axes to the node's rest position (or its `move_to`), N/m; a
-    /// zero stiffness leaves that direction free.
+    /// Springs to the node's rest position (or its `move_to`), N/m, and rotational springs to
+    /// its rest orientation (or its `rotate_by`), N·m/rad, along `axes` (default the world's);
+    /// a zero stiffness leaves that direction free.
     Spring {
+        #[serde(default)]
         stiffness: [f64; 3],
+        #[serde(default)]
+        rotational: Option<[f64; 3]>,
+        #[serde(default)]
+        axes: Option<[[f64; 3]; 3]>,
     },
 }
 
 impl SupportKind {
     /// The coordinate axis a Roller holds (its normal's one non-zero component).
+    /// A Spring's axes (the world's unless given), unit length.
+    pub fn spring_axes(&self) -> [[f64; 3]; 3] {
+        match self {
+            SupportKind::Spring { axes: Some(a), .. } => a.map(|v| {
+                let n = (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+                v.map(|x| x / n)
+            }),
+            _ => [[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
+        }
+    }
+
+    /// A Spring's rotational stiffnesses, if it has any that are not zero.
+    pub fn rotational_stiffness(&self) -> Option<[f64; 3]> {
+        match self {
+            SupportKind::Spring {
+                rotational: Some(k),
+                ..
+            } if k.iter().any(|x| *x != 0.0) => Some(*k),
+            _ => None,
+        }
+    }
+
     pub fn roller_axis(&self) -> Option<usize> {
         match self {
             SupportKind::Roller { normal } => {

@@ -75,6 +75,7 @@ pub fn scene(material: Material, rods: Vec<Rod>) -> Scene {
         target: None,
         reference: None,
         solver: Solver::default(),
+        stages: vec![],
     }
 }
 

@@ -305,6 +305,7 @@ pub fn footprint(
             surface: LoadedSurface(Some(surface.clone())),
         }),
         reference: None,
+        stages: Vec::new(),
         solver: Solver {
             tolerance: spec.tolerance,
             max_iterations: spec.max_iterations,

@@ -1,6 +1,6 @@
 //! Vertex frames and node merges: each joint by its kind (one file per kind in
 //! `network::joint`), sharp rest corners as rigid corners, clamps, and vertices that carry a
-//! torque.
+//! torque or a rotational spring.
 
 use std::collections::HashSet;
 
@@ -41,14 +41,7 @@ pub fn join(rest: &Rest) -> Result<Joined, FieldError> {
         .filter(|s| s.kind == SupportKind::Clamp)
         .map(|s| rest.site(&s.rod, s.vertex))
         .collect();
-    let torque_sites: HashSet<RodSite> = scene
-        .loads
-        .iter()
-        .filter_map(|l| match l {
-            Load::Torque { rod, vertex, .. } => Some(rest.site(rod, *vertex)),
-            _ => None,
-        })
-        .collect();
+    let torque_sites: HashSet<RodSite> = frame_sites_in_order(rest).into_iter().collect();
     let mut joined = Joined {
         table: PortTable::default(),
         splices: Vec::new(),
@@ -76,7 +69,7 @@ pub fn join(rest: &Rest) -> Result<Joined, FieldError> {
             table.single(r, node, true, rest.frame_at(r, node));
         }
     }
-    for site in &torque_sites_in_order(rest) {
+    for site in &frame_sites_in_order(rest) {
         if !table.port_of.contains_key(site) {
             table.single(site.0, site.1, false, rest.frame_at(site.0, site.1));
         }
@@ -84,16 +77,21 @@ pub fn join(rest: &Rest) -> Result<Joined, FieldError> {
     Ok(joined)
 }
 
-/// Torque sites in the order of the scene's loads (frames are numbered in this order).
-fn torque_sites_in_order(rest: &Rest) -> Vec<RodSite> {
-    rest.scene
-        .loads
+/// Vertices whose rotation something acts on, torques (in the order of the scene's loads) and
+/// rotational springs (in the order of its supports): each needs a vertex frame. Frames are
+/// numbered in this order.
+fn frame_sites_in_order(rest: &Rest) -> Vec<RodSite> {
+    let torques = rest.scene.loads.iter().filter_map(|l| match l {
+        Load::Torque { rod, vertex, .. } => Some(rest.site(rod, *vertex)),
+        _ => None,
+    });
+    let springs = rest
+        .scene
+        .supports
         .iter()
-        .filter_map(|l| match l {
-            Load::Torque { rod, vertex, .. } => Some(rest.site(rod, *vertex)),
-            _ => None,
-        })
-        .collect()
+        .filter(|s| s.kind.rotational_stiffness().is_some())
+        .map(|s| rest.site(&s.rod, s.vertex));
+    torques.chain(springs).collect()
 }
 
 fn add_joint(

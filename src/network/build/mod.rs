@@ -56,8 +56,10 @@ pub fn build(scene: &Scene) -> Result<Network, FieldError> {
     let mut terms = terms::elastic(&net, &joined, &layout, &mut state, &mut fixed);
     let driven = !supported.prescribed.is_empty()
         || !supported.rotations.is_empty()
-        || supported.springs.iter().any(|s| s.anchor[0] != s.anchor[1]);
+        || supported.springs.iter().any(|s| s.anchor[0] != s.anchor[1])
+        || supported.rotational.iter().any(|s| s.rotate_by != [0.0; 3]);
     terms.springs = supported.springs;
+    terms.rotational_springs = supported.rotational;
     let force_scale = loads::apply(
         scene,
         &rest,

@@ -1,10 +1,11 @@
 //! Supports: pinned and clamped nodes leave the unknowns; `move_to` and `rotate_by` become
-//! motions prescribed over the continuation.
+//! motions prescribed over the continuation; springs become energy terms.
 
 use std::collections::HashMap;
 
 use super::geometry::Rest;
 use super::nodes::Numbered;
+use crate::energy::rotational_spring::RotationalSpring;
 use crate::energy::spring::Spring;
 use crate::network::info::SupportInfo;
 use crate::network::joint::PortTable;
@@ -17,6 +18,7 @@ pub struct Supported {
     pub prescribed: Vec<Prescribed>,
     /// Elastic supports: their energy terms.
     pub springs: Vec<Spring>,
+    pub rotational: Vec<RotationalSpring>,
     pub rotations: Vec<PrescribedRotation>,
     pub infos: Vec<SupportInfo>,
 }
@@ -31,6 +33,7 @@ pub fn apply(
     let mut out = Supported {
         prescribed: Vec::new(),
         springs: Vec::new(),
+        rotational: Vec::new(),
         rotations: Vec::new(),
         infos: Vec::new(),
     };
@@ -39,21 +42,39 @@ pub fn apply(
     for (si, s) in rest.scene.supports.iter().enumerate() {
         let (r, rnode) = rest.site(&s.rod, s.vertex);
         let node = net.rods[r].nodes[rnode];
-        if let SupportKind::Spring { stiffness } = s.kind {
-            // A spring holds nothing: its node stays free, tied to an anchor that moves with
-            // the load factor from the rest position to `move_to`.
+        if let SupportKind::Spring { stiffness, .. } = s.kind {
+            // A spring holds nothing: its node (frame) stays free, tied to an anchor that moves
+            // with the load factor from rest to `move_to` (turns to `rotate_by`).
             let rest_pos = net.rest_pos[node];
-            out.springs.push(Spring {
-                vars: [0, 1, 2].map(|k| layout.node_coord(node, k)),
-                stiffness,
-                anchor: [rest_pos, s.move_to.unwrap_or(rest_pos)],
+            let axes = s.kind.spring_axes();
+            let spring = stiffness.iter().any(|k| *k != 0.0).then(|| {
+                out.springs.push(Spring {
+                    vars: [0, 1, 2].map(|k| layout.node_coord(node, k)),
+                    stiffness,
+                    axes,
+                    anchor: [rest_pos, s.move_to.unwrap_or(rest_pos)],
+                });
+                out.springs.len() - 1
+            });
+            let rotational = s.kind.rotational_stiffness().map(|k| {
+                let port = table.port_of[&(r, rnode)];
+                let frame = table.ports[port].frame;
+                out.rotational.push(RotationalSpring {
+                    vars: layout.frame(frame),
+                    frame,
+                    axes,
+                    stiffness: k,
+                    rotate_by: s.rotate_by.unwrap_or([0.0; 3]),
+                });
+                (out.rotational.len() - 1, frame)
             });
             out.infos.push(SupportInfo {
                 rod: s.rod.clone(),
                 vertex: s.vertex,
                 node,
-                frame: None,
-                spring: Some(out.springs.len() - 1),
+                frame: rotational.map(|(_, f)| f),
+                spring,
+                rotational: rotational.map(|(k, _)| k),
             });
             continue;
         }
@@ -122,6 +143,7 @@ pub fn apply(
             node,
             frame,
             spring: None,
+            rotational: None,
         });
     }
     Ok(out)

@@ -143,12 +143,15 @@ impl Equilibrium {
             .supports
             .iter()
             .map(|s| {
-                if let Some(k) = s.spring {
-                    // A spring's reaction is its own force; the node is free, so it takes no
-                    // share of a fixed node's gradient.
-                    let sp = &m.terms.springs[k];
-                    let force = sp.force(m.position(s.node), m.state.load_factor);
-                    let moment = [0.0; 3];
+                if s.spring.is_some() || s.rotational.is_some() {
+                    // A spring's reaction is its own force (moment); the node and frame are
+                    // free, so it takes no share of a fixed node's gradient.
+                    let force = s.spring.map_or([0.0; 3], |k| {
+                        m.terms.springs[k].force(m.position(s.node), m.state.load_factor)
+                    });
+                    let moment = s
+                        .rotational
+                        .map_or([0.0; 3], |k| m.terms.rotational_springs[k].moment(&m.state));
                     return (s.rod.clone(), s.vertex, Reaction { force, moment });
                 }
                 let force = match node_taken.insert(s.node) {

@@ -117,6 +117,7 @@ pub fn to_scene(obj: &ObjFile, o: &NetworkOptions) -> Result<Generated, ObjError
             bounds: Vec::new(),
             target: None,
             reference: None,
+            stages: Vec::new(),
             solver: o.solver.clone(),
         },
         rod_lines,

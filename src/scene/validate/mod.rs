@@ -9,6 +9,7 @@ mod joints;
 mod loads;
 mod materials;
 mod rods;
+mod stages;
 mod supports;
 mod targets;
 
@@ -66,6 +67,7 @@ pub fn validate(s: &Scene) -> Result<(), FieldError> {
     supports::supports(s, &rods, &in_joint)?;
     loads::loads(s, &rods)?;
     loads::unsupported_loads(s)?;
+    stages::stages(s, &rods)?;
     constraints::obstacles(s)?;
     constraints::bounds(s, &rods)?;
     targets::target(s)?;
@@ -76,7 +78,9 @@ pub fn validate(s: &Scene) -> Result<(), FieldError> {
 /// What a valid scene probably did not mean, located like errors (`rodnet solve` prints them
 /// on stderr, and the results JSON lists them under `warnings`).
 pub fn warnings(s: &Scene) -> Vec<FieldError> {
-    loads::gravity_warnings(s)
+    let mut w = loads::gravity_warnings(s);
+    w.extend(stages::warnings(s));
+    w
 }
 
 /// The field at fault in one item of a section, and why.

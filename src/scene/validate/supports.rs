@@ -28,10 +28,12 @@ pub(super) fn supports(s: &Scene, rods: &RodIndex, in_joint: &InJoint) -> Result
             if !finite3(&r) {
                 return err("rotate_by", format!("must be finite, got {r:?}"));
             }
-            if sp.kind != SupportKind::Clamp {
+            if sp.kind != SupportKind::Clamp && sp.kind.rotational_stiffness().is_none() {
                 return err(
                     "rotate_by",
-                    "only a Clamp can be rotated (a Pin leaves rotations free)".into(),
+                    "only a Clamp can be rotated, or a Spring's anchor when it has `rotational` \
+                     stiffness (a Pin leaves rotations free)"
+                        .into(),
                 );
             }
         }
@@ -40,18 +42,18 @@ pub(super) fn supports(s: &Scene, rods: &RodIndex, in_joint: &InJoint) -> Result
                 return err("move_to", format!("must be finite, got {t:?}"));
             }
         }
-        if let SupportKind::Spring { stiffness } = sp.kind {
-            let ok = stiffness.iter().all(|k| k.is_finite() && *k >= 0.0)
-                && stiffness.iter().any(|k| *k > 0.0)
-                && stiffness.iter().all(|k| *k <= super::MAX_MAGNITUDE);
-            if !ok {
-                return err(
-                    "kind",
-                    format!(
-                        "a Spring's stiffness (N/m along x, y, z) must be finite, non-negative                          and not all zero, got {stiffness:?}"
-                    ),
-                );
+        if let SupportKind::Spring {
+            stiffness,
+            rotational,
+            axes,
+        } = sp.kind
+        {
+            if let Err((f, m)) = spring(stiffness, rotational, axes) {
+                return err(f, m);
             }
+            // A spring holds nothing: its `move_to` moves its anchor, never the node, so it
+            // cannot contradict what other supports do with the node.
+            continue;
         }
         if let SupportKind::Roller { normal } = sp.kind {
             if !finite3(&normal) || sp.kind.roller_axis().is_none() {
@@ -81,6 +83,64 @@ pub(super) fn supports(s: &Scene, rods: &RodIndex, in_joint: &InJoint) -> Result
                 "kind"
             };
             return err(field, m);
+        }
+    }
+    Ok(())
+}
+
+/// Checks a Spring's stiffnesses and axes; the error names the field of `kind` at fault.
+fn spring(
+    stiffness: [f64; 3],
+    rotational: Option<[f64; 3]>,
+    axes: Option<[[f64; 3]; 3]>,
+) -> Result<(), (&'static str, String)> {
+    let valid = |k: &[f64; 3]| {
+        k.iter()
+            .all(|x| x.is_finite() && *x >= 0.0 && *x <= super::MAX_MAGNITUDE)
+    };
+    if !valid(&stiffness) {
+        return Err((
+            "kind",
+            format!(
+                "a Spring's `stiffness` (N/m) must be finite and non-negative, got {stiffness:?}"
+            ),
+        ));
+    }
+    let rot = rotational.unwrap_or([0.0; 3]);
+    if !valid(&rot) {
+        return Err((
+            "kind",
+            format!("a Spring's `rotational` stiffness (N·m/rad) must be finite and non-negative, got {rot:?}"),
+        ));
+    }
+    if stiffness.iter().chain(&rot).all(|k| *k == 0.0) {
+        return Err((
+            "kind",
+            "a Spring needs a non-zero `stiffness` (N/m) or `rotational` stiffness (N·m/rad)"
+                .into(),
+        ));
+    }
+    let Some(a) = axes else { return Ok(()) };
+    let len = |v: &[f64; 3]| (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt();
+    if let Some(i) = (0..3).find(|&i| !finite3(&a[i]) || len(&a[i]) <= 1e-150) {
+        return Err((
+            "kind",
+            format!(
+                "a Spring's axes[{i}] must be a finite, non-zero direction, got {:?}",
+                a[i]
+            ),
+        ));
+    }
+    for (i, j) in [(0, 1), (0, 2), (1, 2)] {
+        let c = (0..3).map(|k| a[i][k] * a[j][k]).sum::<f64>() / (len(&a[i]) * len(&a[j]));
+        if c.abs() > 1e-6 {
+            return Err((
+                "kind",
+                format!(
+                    "a Spring's axes must be mutually perpendicular: axes[{i}] and axes[{j}] \
+                     have cos = {c:.3e} (at most 1e-6)"
+                ),
+            ));
         }
     }
     Ok(())
