@@ -51,6 +51,7 @@ term_kinds! {
     joint_translation: JointTranslation = 6,
     springs: Spring = 3,
     rotational_springs: RotationalSpring = 3,
+    roller_normals: Spring = 3,
     loads: PointLoad = 3,
     torques: Torque = 3,
 }

@@ -6,6 +6,7 @@
 use rayon::prelude::*;
 
 use super::model::{Model, FIXED};
+use super::roller::Rollers;
 use crate::energy::registry::{TermVisitor, Terms};
 use crate::energy::Term;
 use crate::math::{D1, HD};
@@ -110,6 +111,7 @@ impl Model {
         let mut a = Assemble {
             st: &self.state,
             free: &self.free,
+            rollers: &self.rollers,
             out,
             energy: 0.0,
         };
@@ -121,6 +123,7 @@ impl Model {
 struct Assemble<'a, 'b> {
     st: &'a State,
     free: &'a [u32],
+    rollers: &'a Rollers,
     out: &'a mut Assembly<'b>,
     energy: f64,
 }
@@ -128,9 +131,12 @@ struct Assemble<'a, 'b> {
 impl TermVisitor for Assemble<'_, '_> {
     fn visit<const N: usize, E: Term<N>>(&mut self, kind: usize, terms: &[E]) {
         let slots: Option<&HessianSlots> = self.out.hess.as_ref().map(|h| h.slots);
+        // Slanted rollers project every term at their nodes but their own normal springs.
+        let rollers = (!self.rollers.is_empty() && Terms::NAMES[kind] != "roller_normals")
+            .then_some(self.rollers);
         self.energy += match slots {
-            None => gradient_kind(terms, self.st, self.free, self.out),
-            Some(s) => hessian_kind(terms, &s.0[kind], self.st, self.free, self.out),
+            None => gradient_kind(terms, self.st, self.free, rollers, self.out),
+            Some(s) => hessian_kind(terms, &s.0[kind], self.st, self.free, rollers, self.out),
         };
     }
 }
@@ -153,10 +159,13 @@ fn evaluate<E: Sync, R: Send>(
     }
 }
 
-/// Adds a term's gradient `g` over its variables `v` to the free and (if wanted) full gradient.
+/// Adds a term's gradient over its variables `v` to the free gradient (`g`, projected at slanted
+/// rollers) and, if wanted, to the full gradient (`full`, as it is: reactions need the normal
+/// parts).
 fn scatter_gradient<const N: usize>(
     v: &[usize; N],
     g: &[f64; N],
+    full: &[f64; N],
     free: &[u32],
     out: &mut Assembly,
 ) {
@@ -168,7 +177,7 @@ fn scatter_gradient<const N: usize>(
     }
     if let Some(fg) = out.full_grad.as_deref_mut() {
         for i in 0..N {
-            fg[v[i]] += g[i];
+            fg[v[i]] += full[i];
         }
     }
 }
@@ -177,6 +186,7 @@ fn gradient_kind<const N: usize, E: Term<N>>(
     terms: &[E],
     st: &State,
     free: &[u32],
+    rollers: Option<&Rollers>,
     out: &mut Assembly,
 ) -> f64 {
     let mut energy = 0.0;
@@ -188,7 +198,11 @@ fn gradient_kind<const N: usize, E: Term<N>>(
         });
         for (t, r) in block.iter().zip(&local) {
             energy += r.v;
-            scatter_gradient(t.vars(), &r.g, free, out);
+            let v = t.vars();
+            match rollers.filter(|p| p.touches(v)) {
+                Some(p) => scatter_gradient(v, &p.project_gradient(v, r), &r.g, free, out),
+                None => scatter_gradient(v, &r.g, &r.g, free, out),
+            }
         }
     }
     energy
@@ -199,6 +213,7 @@ fn hessian_kind<const N: usize, E: Term<N>>(
     slots: &[u32],
     st: &State,
     free: &[u32],
+    rollers: Option<&Rollers>,
     out: &mut Assembly,
 ) -> f64 {
     let np = N * (N + 1) / 2;
@@ -208,10 +223,12 @@ fn hessian_kind<const N: usize, E: Term<N>>(
         evaluate(block, &mut local, |t: &E| {
             t.derivatives(st, &t.gather(&st.q))
         });
-        for (k, (t, r)) in block.iter().zip(&local).enumerate() {
-            energy += r.v;
+        for (k, (t, full)) in block.iter().zip(&local).enumerate() {
+            energy += full.v;
             let v = t.vars();
-            scatter_gradient(v, &r.g, free, out);
+            let projected = rollers.filter(|p| p.touches(v)).map(|p| p.project(v, full));
+            let r = projected.as_ref().unwrap_or(full);
+            scatter_gradient(v, &r.g, &full.g, free, out);
             let h = &mut out.hess.as_mut().expect("Hessian output").values;
             let s = &slots[(b * BLOCK + k) * np..(b * BLOCK + k + 1) * np];
             let mut p = 0;

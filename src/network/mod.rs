@@ -18,6 +18,7 @@ pub mod positions;
 pub mod problem;
 pub mod projection;
 pub mod rest;
+pub mod roller;
 pub mod stability;
 pub mod stage;
 pub mod states;

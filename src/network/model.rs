@@ -10,6 +10,7 @@ use crate::energy::registry::{TermVisitor, Terms};
 use crate::energy::{Category, Term};
 use crate::math::vec::{norm, normalize, scalef, sub, transport};
 use crate::network::contact::Contact;
+use crate::network::roller::{Rollers, SlantedRoller};
 use crate::variables::{DofLayout, FrameRef, State, Unknowns, VarKind};
 
 pub use crate::variables::FIXED;
@@ -125,6 +126,8 @@ pub struct Model {
     pub force_scale: f64,
     /// Contact and bound constraints, when the scene declares any.
     pub contact: Option<Contact>,
+    /// Rollers with a general normal (`network/roller.rs`).
+    pub rollers: Rollers,
 }
 
 /// The pieces a [`Model`] is made of (everything but the free map, which follows from `fixed`).
@@ -139,6 +142,7 @@ pub struct ModelParts {
     pub rest_lengths: Vec<f64>,
     pub scales: Scales,
     pub contact: Option<Contact>,
+    pub rollers: Vec<SlantedRoller>,
 }
 
 impl Model {
@@ -167,6 +171,7 @@ impl Model {
             length_scale: p.scales.length,
             force_scale: p.scales.force,
             contact: p.contact,
+            rollers: Rollers::new(p.rollers, p.layout.len()),
         }
     }
 
@@ -233,6 +238,8 @@ impl Model {
                 self.state.q[v] += alpha * step[f as usize];
             }
         }
+        // Steps are tangent to slanted rollers' planes up to round-off; corrections may not be.
+        self.rollers.snap(&mut self.state.q, self.state.load_factor);
     }
 
     /// Length of every global edge for the variables `q`.
@@ -299,6 +306,7 @@ impl Model {
         for p in &self.staged {
             self.state.q[p.var] = p.start + lambda * (p.end - p.start);
         }
+        self.rollers.snap(&mut self.state.q, scene);
         for p in &self.prescribed_rotations {
             let w = scalef(p.rotation, scene);
             let mut f = FrameRef::identity();
@@ -410,6 +418,7 @@ impl Model {
         let external = self.count_of(Category::External);
         external == 0
             && self.prescribed.iter().all(|p| p.start == p.end)
+            && !self.rollers.planes_move()
             && self
                 .terms
                 .springs

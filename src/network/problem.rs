@@ -133,6 +133,7 @@ impl NewtonProblem for NetworkProblem<'_> {
             // The predictor must not start a sub-step inside an obstacle.
             c.project(&mut m.state.q);
         }
+        m.rollers.snap(&mut m.state.q, m.state.load_factor);
         m.commit();
     }
     fn predict(&mut self, from: &State, factor: f64, lambda: f64) {

@@ -60,6 +60,7 @@ pub fn build(scene: &Scene) -> Result<Network, FieldError> {
         || supported.rotational.iter().any(|s| s.rotate_by != [0.0; 3]);
     terms.springs = supported.springs;
     terms.rotational_springs = supported.rotational;
+    let rollers = slanted_rollers(&supported.slanted, &layout, &fixed, &mut terms)?;
     let force_scale = loads::apply(
         scene,
         &rest,
@@ -93,6 +94,7 @@ pub fn build(scene: &Scene) -> Result<Network, FieldError> {
             force: force_scale,
         },
         contact: None,
+        rollers,
     });
     model.contact = Contact::build(
         scene,
@@ -126,4 +128,65 @@ fn initially_fixed(layout: &DofLayout, table: &crate::network::joint::PortTable)
         fixed[layout.alpha(a)] = true;
     }
     fixed
+}
+
+/// The slanted rollers of nodes that nothing else holds (a Pin or Clamp there holds the node
+/// already), with their planes' normals made orthonormal, and the spring that gives each the
+/// stiffness of the network's stiffest edge along its normals.
+fn slanted_rollers(
+    slanted: &[supports::Slanted],
+    layout: &DofLayout,
+    fixed: &[bool],
+    terms: &mut crate::energy::registry::Terms,
+) -> Result<Vec<crate::network::roller::SlantedRoller>, FieldError> {
+    use crate::math::vec::{any_perpendicular, cross, dot, normalize, scalef, sub};
+    let stiffest = terms
+        .stretch
+        .iter()
+        .map(|s| s.ea / s.rest_length)
+        .fold(0.0, f64::max);
+    let mut out = Vec::new();
+    for (node, normals, through) in slanted {
+        let vars = layout.node(*node);
+        if vars.iter().any(|&v| fixed[v]) {
+            continue;
+        }
+        let mut basis: Vec<[f64; 3]> = Vec::new();
+        for n in normals {
+            let mut u = normalize(*n);
+            for b in &basis {
+                u = sub(u, scalef(*b, dot(u, *b)));
+            }
+            // Parallel normals through one node are one plane (they share its rest position and
+            // `move_to`).
+            if dot(u, u) > 1e-12 {
+                basis.push(normalize(u));
+            }
+        }
+        if basis.len() > 2 {
+            return Err(FieldError::global(
+                "supports",
+                "kind",
+                format!(
+                    "Rollers with three independent normals hold node {node} in place; use a Pin \
+                     (with its `move_to`) instead"
+                ),
+            ));
+        }
+        let (a, b) = match basis.len() {
+            1 => (basis[0], normalize(any_perpendicular(basis[0]))),
+            _ => (basis[0], basis[1]),
+        };
+        let k = if basis.len() == 2 { stiffest } else { 0.0 };
+        terms.roller_normals.push(crate::energy::spring::Spring {
+            vars,
+            stiffness: [stiffest, k, 0.0],
+            axes: [a, b, cross(a, b)],
+            anchor: *through,
+        });
+        out.push(crate::network::roller::SlantedRoller::new(
+            *node, vars, basis, *through,
+        ));
+    }
+    Ok(out)
 }

@@ -14,11 +14,17 @@ use crate::scene::types::SupportKind;
 use crate::scene::FieldError;
 use crate::variables::DofLayout;
 
+/// The Rollers with a general normal on one node: (node, their normals, a point of their
+/// planes at λ = 0 and 1).
+pub type Slanted = (usize, Vec<[f64; 3]>, [[f64; 3]; 2]);
+
 pub struct Supported {
     pub prescribed: Vec<Prescribed>,
     /// Elastic supports: their energy terms.
     pub springs: Vec<Spring>,
     pub rotational: Vec<RotationalSpring>,
+    /// Rollers with a general normal, by node.
+    pub slanted: Vec<Slanted>,
     pub rotations: Vec<PrescribedRotation>,
     pub infos: Vec<SupportInfo>,
 }
@@ -34,9 +40,20 @@ pub fn apply(
         prescribed: Vec::new(),
         springs: Vec::new(),
         rotational: Vec::new(),
+        slanted: Vec::new(),
         rotations: Vec::new(),
         infos: Vec::new(),
     };
+    let slanted_nodes: std::collections::HashSet<usize> = rest
+        .scene
+        .supports
+        .iter()
+        .filter(|s| matches!(s.kind, SupportKind::Roller { .. }) && s.kind.roller_axis().is_none())
+        .map(|s| {
+            let (r, rnode) = rest.site(&s.rod, s.vertex);
+            net.rods[r].nodes[rnode]
+        })
+        .collect();
     let mut moved: HashMap<usize, [f64; 3]> = HashMap::new();
     let mut turned: HashMap<usize, (usize, Option<[f64; 3]>)> = HashMap::new();
     for (si, s) in rest.scene.supports.iter().enumerate() {
@@ -75,18 +92,38 @@ pub fn apply(
                 frame: rotational.map(|(_, f)| f),
                 spring,
                 rotational: rotational.map(|(k, _)| k),
+                roller: None,
             });
             continue;
         }
+        // A node with a slanted Roller keeps its coordinates: all its Rollers hold it by
+        // projection (`network/roller.rs`).
+        let slanted_index = match s.kind {
+            SupportKind::Roller { normal } if slanted_nodes.contains(&node) => {
+                let rest_pos = net.rest_pos[node];
+                let at = [rest_pos, s.move_to.unwrap_or(rest_pos)];
+                let k = match out.slanted.iter().position(|e| e.0 == node) {
+                    Some(k) => k,
+                    None => {
+                        out.slanted.push((node, Vec::new(), at));
+                        out.slanted.len() - 1
+                    }
+                };
+                out.slanted[k].1.push(normal);
+                Some(k)
+            }
+            _ => None,
+        };
         // A Roller holds (and moves) one coordinate; Pins and Clamps all three.
-        let held: Vec<usize> = match s.kind.roller_axis() {
-            Some(k) => vec![k],
-            None => vec![0, 1, 2],
+        let held: Vec<usize> = match (s.kind.roller_axis(), slanted_index) {
+            (_, Some(_)) => vec![],
+            (Some(k), None) => vec![k],
+            (None, None) => vec![0, 1, 2],
         };
         for &k in &held {
             fixed[layout.node_coord(node, k)] = true;
         }
-        if let Some(target) = s.move_to {
+        if let Some(target) = s.move_to.filter(|_| !held.is_empty()) {
             match moved.insert(node, target) {
                 Some(prev) if prev != target => {
                     return Err(FieldError::new(
@@ -144,6 +181,7 @@ pub fn apply(
             frame,
             spring: None,
             rotational: None,
+            roller: slanted_index,
         });
     }
     Ok(out)

@@ -154,9 +154,13 @@ impl Equilibrium {
                         .map_or([0.0; 3], |k| m.terms.rotational_springs[k].moment(&m.state));
                     return (s.rod.clone(), s.vertex, Reaction { force, moment });
                 }
-                let force = match node_taken.insert(s.node) {
-                    true => m.layout.node(s.node).map(|v| full[v]),
-                    false => [0.0; 3],
+                let at_node = m.layout.node(s.node).map(|v| full[v]);
+                let slanted = m.rollers.list.iter().find(|r| r.node == s.node);
+                let force = match (node_taken.insert(s.node), slanted) {
+                    (false, _) => [0.0; 3],
+                    // A slanted roller's node is free: its reaction is what the planes take.
+                    (true, Some(r)) => r.normal_part(at_node),
+                    (true, None) => at_node,
                 };
                 let moment = match s.frame.filter(|f| frame_taken.insert(*f)) {
                     Some(f) => m.layout.frame(f).map(|v| full[v]),

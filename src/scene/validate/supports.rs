@@ -56,13 +56,13 @@ pub(super) fn supports(s: &Scene, rods: &RodIndex, in_joint: &InJoint) -> Result
             continue;
         }
         if let SupportKind::Roller { normal } = sp.kind {
-            if !finite3(&normal) || sp.kind.roller_axis().is_none() {
+            let len =
+                (normal[0] * normal[0] + normal[1] * normal[1] + normal[2] * normal[2]).sqrt();
+            if !finite3(&normal) || len <= 1e-150 || !len.is_finite() {
                 return err(
                     "kind",
                     format!(
-                        "a Roller's normal must lie along x, y or z (one non-zero component), got \
-                         {normal:?}: a general normal needs a change of variables that rodnet does \
-                         not have yet"
+                        "a Roller's normal must be a finite, non-zero direction, got {normal:?}"
                     ),
                 );
             }
