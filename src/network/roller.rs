@@ -8,6 +8,9 @@
 //! on the constrained manifold, in world coordinates that every other part of the solver keeps
 //! reading. Axis-aligned rollers are eliminated instead (`network/build/supports.rs`).
 
+use crate::energy::registry::Terms;
+use crate::energy::spring::Spring;
+use crate::math::vec::{any_perpendicular, cross, normalize};
 use crate::math::{D1, HD};
 
 /// Marks variables that belong to no slanted roller.
@@ -166,4 +169,33 @@ impl Rollers {
 
 fn apply(p: &[[f64; 3]; 3], x: [f64; 3]) -> [f64; 3] {
     std::array::from_fn(|i| p[i][0] * x[0] + p[i][1] * x[1] + p[i][2] * x[2])
+}
+
+/// The stiffness that holds slanted planes: the network's stiffest edge, EA/l (N/m). Stiff
+/// enough that the held directions never show among the lowest modes, no stiffer, so that the
+/// factorization's conditioning does not change.
+pub fn holding_stiffness(terms: &Terms) -> f64 {
+    terms
+        .stretch
+        .iter()
+        .map(|s| s.ea / s.rest_length)
+        .fold(0.0, f64::max)
+}
+
+/// The spring along a roller's normals (one or two; three hold the node entirely) that gives
+/// the projected Hessian back its stiffness there; it pulls nothing on the planes.
+pub fn holding_spring(r: &SlantedRoller, stiffness: f64) -> Spring {
+    let u = &r.normals;
+    let a = u[0];
+    let b = u
+        .get(1)
+        .copied()
+        .unwrap_or_else(|| normalize(any_perpendicular(a)));
+    let k = |i: usize| if u.len() > i { stiffness } else { 0.0 };
+    Spring {
+        vars: r.vars,
+        stiffness: [k(0), k(1), k(2)],
+        axes: [a, b, cross(a, b)],
+        anchor: r.through,
+    }
 }

@@ -131,20 +131,16 @@ fn initially_fixed(layout: &DofLayout, table: &crate::network::joint::PortTable)
 }
 
 /// The slanted rollers of nodes that nothing else holds (a Pin or Clamp there holds the node
-/// already), with their planes' normals made orthonormal, and the spring that gives each the
-/// stiffness of the network's stiffest edge along its normals.
+/// already), with their planes' normals made orthonormal, and the spring that holds each.
 fn slanted_rollers(
     slanted: &[supports::Slanted],
     layout: &DofLayout,
     fixed: &[bool],
     terms: &mut crate::energy::registry::Terms,
 ) -> Result<Vec<crate::network::roller::SlantedRoller>, FieldError> {
-    use crate::math::vec::{any_perpendicular, cross, dot, normalize, scalef, sub};
-    let stiffest = terms
-        .stretch
-        .iter()
-        .map(|s| s.ea / s.rest_length)
-        .fold(0.0, f64::max);
+    use crate::math::vec::{dot, normalize, scalef, sub};
+    use crate::network::roller::{holding_spring, holding_stiffness, SlantedRoller};
+    let stiffest = holding_stiffness(terms);
     let mut out = Vec::new();
     for (node, normals, through) in slanted {
         let vars = layout.node(*node);
@@ -173,20 +169,9 @@ fn slanted_rollers(
                 ),
             ));
         }
-        let (a, b) = match basis.len() {
-            1 => (basis[0], normalize(any_perpendicular(basis[0]))),
-            _ => (basis[0], basis[1]),
-        };
-        let k = if basis.len() == 2 { stiffest } else { 0.0 };
-        terms.roller_normals.push(crate::energy::spring::Spring {
-            vars,
-            stiffness: [stiffest, k, 0.0],
-            axes: [a, b, cross(a, b)],
-            anchor: *through,
-        });
-        out.push(crate::network::roller::SlantedRoller::new(
-            *node, vars, basis, *through,
-        ));
+        let roller = SlantedRoller::new(*node, vars, basis, *through);
+        terms.roller_normals.push(holding_spring(&roller, stiffest));
+        out.push(roller);
     }
     Ok(out)
 }
