@@ -3,7 +3,7 @@
 use std::path::{Path, PathBuf};
 
 use super::network::{self, NetworkArgs};
-use super::output::{atomic_write, bad, check_outputs, diagnostic, given};
+use super::output::{atomic_write, bad, check_outputs, diagnostic, given, vtk_bytes};
 use super::output::{EXIT_BAD_INPUT, EXIT_NOT_CONVERGED, EXIT_OK};
 use super::progress::{self, show_progress};
 use crate::io::{atomic, csv, obj};
@@ -14,6 +14,7 @@ use crate::scene::{self, FieldError, Scene, SceneError};
 pub(super) struct Outputs {
     pub json: Option<PathBuf>,
     pub obj: Option<PathBuf>,
+    pub vtk: Option<PathBuf>,
     pub csv: Option<PathBuf>,
     pub forces_csv: Option<PathBuf>,
     /// The eigen-analysis asked for (`--modes K`) and where its mode shapes go.
@@ -29,6 +30,7 @@ impl Outputs {
         given(&[
             ("--json", &self.json),
             ("--obj", &self.obj),
+            ("--vtk", &self.vtk),
             ("--csv", &self.csv),
             ("--forces-csv", &self.forces_csv),
             ("--modes-obj", &self.modes_obj),
@@ -187,6 +189,12 @@ fn solve_and_write(label: &str, sc: &Scene, source: &Source, outputs: Outputs, q
     }
     if let Some(p) = &outputs.obj {
         files.push((p, obj::to_obj(r).into_bytes()));
+    }
+    if let Some(p) = &outputs.vtk {
+        match vtk_bytes(p, r) {
+            Ok(b) => files.push((p, b)),
+            Err(e) => return bad(e),
+        }
     }
     if let Some(p) = &outputs.csv {
         files.push((p, csv::to_csv(&sol.equilibrium).into_bytes()));
