@@ -142,3 +142,182 @@ fn bad_results_are_located() {
         assert!(!png.exists(), "{name}: picture written for bad input");
     }
 }
+
+/// Pixels of exactly `c` in the views.
+fn exact(w: u32, h: u32, px: &[[u8; 3]], c: [u8; 3]) -> usize {
+    let views = (w * (h - rodnet::io::plot::LEGEND_H)) as usize;
+    px[..views].iter().filter(|p| **p == c).count()
+}
+
+fn plot(json: &Path, png: &Path, extra: &[&str]) -> std::process::Output {
+    rodnet()
+        .arg("plot")
+        .arg(json)
+        .arg("-o")
+        .arg(png)
+        .args(extra)
+        .output()
+        .unwrap()
+}
+
+#[test]
+fn plot_draws_rest_shape_supports_loads_and_real_text() {
+    use rodnet::io::plot::{LOAD, REST, SUPPORT};
+    let d = tmpdir("marks");
+    let json = d.join("r.json");
+    let out = rodnet()
+        .args(["solve", "networks/cantilever.ron", "--quiet", "--json"])
+        .arg(&json)
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(0));
+    let png = d.join("v.png");
+    let out = plot(&json, &png, &["--width", "800", "--height", "600"]);
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let (w, h, px) = decode(&png);
+    assert_eq!((w, h), (800, 600));
+    // The straight rest beam, in three of the views (the side view sees it end on).
+    assert!(exact(w, h, &px, REST) > 300, "{}", exact(w, h, &px, REST));
+    // The clamp's square (12 × 12 in each view) and the tip load's arrows.
+    assert!(
+        exact(w, h, &px, SUPPORT) > 4 * 100,
+        "{}",
+        exact(w, h, &px, SUPPORT)
+    );
+    assert!(exact(w, h, &px, LOAD) > 60, "{}", exact(w, h, &px, LOAD));
+    // Anti-aliased text: greys between the text colour and white (a bitmap font has none).
+    let greys = px
+        .iter()
+        .filter(|p| p[0] == p[1] && p[1] == p[2] && (60..230).contains(&p[0]));
+    assert!(greys.count() > 200);
+
+    // Displacements drawn three times larger: another picture, the rest shape still in it.
+    let png3 = d.join("v3.png");
+    let out = plot(
+        &json,
+        &png3,
+        &[
+            "--width",
+            "800",
+            "--height",
+            "600",
+            "--deflection-scale",
+            "3",
+        ],
+    );
+    assert_eq!(out.status.code(), Some(0));
+    let (_, _, px3) = decode(&png3);
+    assert_ne!(px, px3);
+    assert!(exact(w, h, &px3, REST) > 100);
+
+    // Results without the extensions: no rest shape, supports or loads to draw.
+    let v: serde_json::Value = serde_json::from_slice(&std::fs::read(&json).unwrap()).unwrap();
+    let rods: Vec<serde_json::Value> = v["rods"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|r| serde_json::json!({"name": r["name"], "points": r["points"], "twist": r["twist"]}))
+        .collect();
+    let bare = d.join("bare.json");
+    std::fs::write(&bare, serde_json::json!({ "rods": rods }).to_string()).unwrap();
+    let out = plot(&bare, &png, &[]);
+    assert_eq!(out.status.code(), Some(0));
+    let (w, h, px) = decode(&png);
+    for c in [REST, SUPPORT, LOAD] {
+        assert_eq!(exact(w, h, &px, c), 0, "{c:?}");
+    }
+}
+
+#[test]
+fn colour_quantities_are_drawn_or_refused_by_name() {
+    let d = tmpdir("quantities");
+    let json = d.join("r.json");
+    let out = rodnet()
+        .args(["solve", "networks/cantilever.ron", "--quiet", "--json"])
+        .arg(&json)
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(0));
+    let png = d.join("axial.png");
+    let out = plot(&json, &png, &["--color", "axial"]);
+    let said = String::from_utf8_lossy(&out.stdout);
+    assert_eq!(out.status.code(), Some(0));
+    assert!(
+        said.contains("axial force") && said.ends_with(" N\n"),
+        "{said}"
+    );
+    let (w, h, px) = decode(&png);
+    // The tip's edge carries almost no axial force, the clamp's the most (the tip load bends
+    // the beam until it pulls along it).
+    assert!(count(w, h, &px, 0.97, 1.0) > 4);
+    assert!(count(w, h, &px, 0.0, 0.03) > 4);
+
+    // The cantilever's material has no yield strength and its scene no target.
+    for (q, needle) in [
+        ("utilization", "rods[0].forces[0].utilization: missing"),
+        ("distance", "rods[0].target_distance: missing"),
+    ] {
+        let png = d.join(format!("{q}.png"));
+        let out = plot(&json, &png, &["--color", q]);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{q}: {err}");
+        assert!(err.contains("r.json") && err.contains(needle), "{q}: {err}");
+        assert!(!png.exists());
+    }
+    let bare = d.join("bare.json");
+    std::fs::write(&bare, r#"{"rods": [{"points": [[0, 0, 0], [1, 0, 0]]}]}"#).unwrap();
+    for (args, needle) in [
+        (
+            &["--color", "bending"][..],
+            "rods[0].bending_stress: missing",
+        ),
+        (&["--color", "axial"][..], "rods[0].forces: missing"),
+        (&["--deflection-scale", "2"][..], "no `rest_points`"),
+    ] {
+        let out = plot(&bare, &png, args);
+        let err = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(2), "{args:?}: {err}");
+        assert!(
+            err.contains("bare.json") && err.contains(needle),
+            "{args:?}: {err}"
+        );
+    }
+}
+
+#[test]
+fn distance_to_the_target_colours_a_gridshell() {
+    let d = tmpdir("distance");
+    let json = d.join("r.json");
+    let out = rodnet()
+        .args([
+            "solve",
+            "networks/hemisphere_flat_n2.ron",
+            "--quiet",
+            "--json",
+        ])
+        .arg(&json)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.code().is_some_and(|c| c <= 1),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let png = d.join("d.png");
+    let out = plot(&json, &png, &["--color", "distance"]);
+    let said = String::from_utf8_lossy(&out.stdout);
+    assert_eq!(
+        out.status.code(),
+        Some(0),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(said.contains("distance to the target"), "{said}");
+    let (w, h, px) = decode(&png);
+    assert!(count(w, h, &px, 0.0, 0.03) > 4 && count(w, h, &px, 0.97, 1.0) > 4);
+}

@@ -27,7 +27,7 @@ fn force_balance(net: &Network, eq: &Equilibrium) -> ([f64; 3], f64) {
         }
         scale += f.iter().map(|x| x * x).sum::<f64>().sqrt();
     };
-    for (_, _, r) in &eq.reactions {
+    for r in eq.reactions.iter().map(|s| &s.reaction) {
         add(r.force);
     }
     for l in &m.terms.loads {
@@ -132,8 +132,8 @@ fn two_supports_on_one_node_share_its_reaction() {
         assert_eq!(r.len(), 4);
         // The node's force is reported once, by the first support; the clamp's moment by the
         // clamp; together they are the single clamp's reaction.
-        let one = single.equilibrium.reactions[0].2;
-        let (p, q) = (r[0].2, r[1].2);
+        let one = single.equilibrium.reactions[0].reaction;
+        let (p, q) = (r[0].reaction, r[1].reaction);
         for k in 0..3 {
             assert!((p.force[k] + q.force[k] - one.force[k]).abs() <= 1e-9 * 100.0);
             assert!((p.moment[k] + q.moment[k] - one.moment[k]).abs() <= 1e-9 * 100.0);
@@ -145,7 +145,7 @@ fn two_supports_on_one_node_share_its_reaction() {
         let pin = if first == "Pin" { p } else { q };
         assert_eq!(pin.moment, [0.0; 3]);
         // The vertical reactions carry the 100 N.
-        let up: f64 = r.iter().map(|(_, _, x)| x.force[2]).sum();
+        let up: f64 = r.iter().map(|x| x.reaction.force[2]).sum();
         assert!((up - 100.0).abs() < 1e-6, "{name}: Σ Rz = {up}");
     }
     // The same clamp twice, and two pins.

@@ -3,7 +3,7 @@
 
 use std::path::PathBuf;
 
-use pyo3::exceptions::{PyIndexError, PyKeyError, PyOSError};
+use pyo3::exceptions::{PyIndexError, PyKeyError, PyOSError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyBytes;
 
@@ -175,6 +175,19 @@ impl Results {
             &path,
             rodnet::io::obj::to_obj(&self.solved.results).as_bytes(),
         )
+    }
+
+    /// Writes the equilibrium as VTK XML (as `rodnet solve --vtk`): `.vtp` PolyData or `.vtu`
+    /// UnstructuredGrid (meshio reads the latter), atomically.
+    fn write_vtk(&self, path: PathBuf) -> PyResult<()> {
+        let format = rodnet::io::vtk::Format::of(&path).map_err(PyValueError::new_err)?;
+        let r = &self.solved.results;
+        if !r.all_finite() {
+            return Err(PyValueError::new_err(
+                "the results hold non-finite values (the solve diverged); no VTK file written",
+            ));
+        }
+        write(&path, rodnet::io::vtk::to_vtk(r, format).as_bytes())
     }
 
     fn __repr__(&self) -> String {

@@ -7,7 +7,7 @@ use clap::Args;
 
 use super::gridshell::{parse_section, SectionRatio};
 use super::network::JointArg;
-use super::output::{bad, check_outputs_creating, diagnostic, given};
+use super::output::{bad, check_outputs_creating, diagnostic, given, vtk_bytes};
 use super::output::{EXIT_NOT_CONVERGED, EXIT_OK};
 use super::progress::{self, show_progress};
 use crate::gridshell::fit::footprint::{FitSpec, DEFAULT_MIN_ANGLE_DEG};
@@ -68,6 +68,9 @@ pub struct FitArgs {
     pub json: Option<PathBuf>,
     #[arg(long)]
     pub obj: Option<PathBuf>,
+    /// Write the equilibrium as VTK XML here (.vtp or .vtu, as `rodnet solve --vtk`).
+    #[arg(long, value_name = "F.vtp", value_parser = super::output::vtk_path)]
+    pub vtk: Option<PathBuf>,
     /// Write the text report here.
     #[arg(long)]
     pub report: Option<PathBuf>,
@@ -151,6 +154,7 @@ struct Outputs {
 fn outputs(a: &FitArgs) -> Result<Outputs, String> {
     let explicit = a.json.is_some()
         || a.obj.is_some()
+        || a.vtk.is_some()
         || a.report.is_some()
         || a.scene_out.is_some()
         || a.footprint_csv.is_some()
@@ -200,6 +204,7 @@ pub(super) fn run(a: FitArgs) -> i32 {
         ("--scene-out", &a.scene_out),
         ("--json", &out.json),
         ("--obj", &out.obj),
+        ("--vtk", &a.vtk),
         ("--report", &out.report),
         ("--footprint-csv", &a.footprint_csv),
         ("--footprint-svg", &a.footprint_svg),
@@ -267,6 +272,12 @@ pub(super) fn run(a: FitArgs) -> i32 {
     add(&out.report, summary.clone().into_bytes());
     add(&a.footprint_csv, fab::cut_list_csv(&rods).into_bytes());
     add(&a.footprint_svg, fab::footprint_svg(&rods).into_bytes());
+    if let Some(p) = &a.vtk {
+        match vtk_bytes(p, r) {
+            Ok(b) => files.push((p.clone(), b)),
+            Err(e) => return bad(e),
+        }
+    }
     if let Err((p, e)) = atomic::write_all(&files) {
         return bad(format_args!("cannot write {}: {e}", p.display()));
     }

@@ -6,7 +6,7 @@ use std::path::{Path, PathBuf};
 use clap::Args;
 
 use super::network::JointArg;
-use super::output::{atomic_write, bad, check_outputs_creating, diagnostic, given};
+use super::output::{atomic_write, bad, check_outputs_creating, diagnostic, given, vtk_bytes};
 use super::output::{EXIT_NOT_CONVERGED, EXIT_OK};
 use super::progress::{self, show_progress};
 use crate::gridshell::footprint::{self, HemisphereSpec, JointChoice};
@@ -86,6 +86,9 @@ pub struct HemisphereArgs {
     /// Write the equilibrium as OBJ polylines here.
     #[arg(long)]
     pub obj: Option<PathBuf>,
+    /// Write the equilibrium as VTK XML here (.vtp or .vtu, as `rodnet solve --vtk`).
+    #[arg(long, value_name = "F.vtp", value_parser = super::output::vtk_path)]
+    pub vtk: Option<PathBuf>,
     /// Write the text report here.
     #[arg(long)]
     pub report: Option<PathBuf>,
@@ -261,6 +264,7 @@ impl Outputs {
             ("--scene-out", &a.scene_out),
             ("--json", &self.json),
             ("--obj", &self.obj),
+            ("--vtk", &a.vtk),
             ("--report", &self.report),
         ])
     }
@@ -269,8 +273,11 @@ impl Outputs {
 /// The files asked for, with the default names in --out-dir (or the current directory when no
 /// output option is given).
 fn outputs(a: &HemisphereArgs) -> Result<Outputs, String> {
-    let explicit =
-        a.json.is_some() || a.obj.is_some() || a.report.is_some() || a.scene_out.is_some();
+    let explicit = a.json.is_some()
+        || a.obj.is_some()
+        || a.report.is_some()
+        || a.scene_out.is_some()
+        || a.vtk.is_some();
     let dir = match (&a.out_dir, explicit) {
         (Some(d), _) => Some(d.clone()),
         (None, false) => Some(PathBuf::from(".")),
@@ -361,7 +368,7 @@ pub(super) fn run(a: HemisphereArgs) -> i32 {
             return bad(e);
         }
     }
-    if out.json.is_none() && out.obj.is_none() && out.report.is_none() {
+    if out.json.is_none() && out.obj.is_none() && out.report.is_none() && a.vtk.is_none() {
         return EXIT_OK;
     }
 
@@ -393,6 +400,12 @@ pub(super) fn run(a: HemisphereArgs) -> i32 {
     }
     if let Some(p) = out.obj {
         files.push((p, obj::to_obj(r).into_bytes()));
+    }
+    if let Some(p) = &a.vtk {
+        match vtk_bytes(p, r) {
+            Ok(b) => files.push((p.clone(), b)),
+            Err(e) => return bad(e),
+        }
     }
     if let Some(p) = out.report {
         files.push((p, summary.clone().into_bytes()));

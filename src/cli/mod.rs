@@ -59,6 +59,11 @@ pub enum Command {
         /// Write the equilibrium as OBJ polylines here.
         #[arg(long)]
         obj: Option<PathBuf>,
+        /// Write the equilibrium as VTK XML here: .vtp PolyData (ParaView) or .vtu
+        /// UnstructuredGrid (ParaView, meshio); one line cell per edge, per-node and per-edge
+        /// fields.
+        #[arg(long, value_name = "F.vtp", value_parser = output::vtk_path)]
+        vtk: Option<PathBuf>,
         /// Write one CSV row per node here.
         #[arg(long)]
         csv: Option<PathBuf>,
@@ -132,6 +137,7 @@ pub fn run(cli: Cli) -> i32 {
             scene,
             json,
             obj,
+            vtk,
             csv,
             forces_csv,
             modes,
@@ -147,6 +153,7 @@ pub fn run(cli: Cli) -> i32 {
                 solve::Outputs {
                     json,
                     obj,
+                    vtk,
                     csv,
                     forces_csv,
                     modes: modes.map(|k| k as usize),

@@ -98,6 +98,19 @@ fn identity(p: &Path) -> Option<PathBuf> {
     }
 }
 
+/// A `--vtk` file name: its extension picks the dataset (checked when the options are parsed).
+pub(super) fn vtk_path(s: &str) -> Result<PathBuf, String> {
+    let p = PathBuf::from(s);
+    crate::io::vtk::Format::of(&p)?;
+    Ok(p)
+}
+
+/// The VTK file of `r` for `p`, named .vtp or .vtu ([`vtk_path`]).
+pub(super) fn vtk_bytes(p: &Path, r: &crate::io::results::Results) -> Result<Vec<u8>, String> {
+    let format = crate::io::vtk::Format::of(p)?;
+    Ok(crate::io::vtk::to_vtk(r, format).into_bytes())
+}
+
 /// The output options that were given, as (flag, path), for [`check_outputs`].
 pub(super) fn given<'f, 'p>(
     options: &[(&'f str, &'p Option<PathBuf>)],

@@ -3,7 +3,7 @@
 use std::path::{Path, PathBuf};
 
 use super::network::{self, NetworkArgs};
-use super::output::{atomic_write, bad, check_outputs, diagnostic, given};
+use super::output::{atomic_write, bad, check_outputs, diagnostic, given, vtk_bytes};
 use super::output::{EXIT_BAD_INPUT, EXIT_NOT_CONVERGED, EXIT_OK};
 use super::progress::{self, show_progress};
 use crate::io::{atomic, csv, obj};
@@ -14,6 +14,7 @@ use crate::scene::{self, FieldError, Scene, SceneError};
 pub(super) struct Outputs {
     pub json: Option<PathBuf>,
     pub obj: Option<PathBuf>,
+    pub vtk: Option<PathBuf>,
     pub csv: Option<PathBuf>,
     pub forces_csv: Option<PathBuf>,
     /// The eigen-analysis asked for (`--modes K`) and where its mode shapes go.
@@ -29,14 +30,15 @@ impl Outputs {
         given(&[
             ("--json", &self.json),
             ("--obj", &self.obj),
+            ("--vtk", &self.vtk),
             ("--csv", &self.csv),
             ("--forces-csv", &self.forces_csv),
             ("--modes-obj", &self.modes_obj),
         ])
     }
 
-    /// The results files of one solution: each of `--json`, `--obj`, `--csv`, `--forces-csv`
-    /// given, at its path with `.STAGE` before the extension when `stage` is named.
+    /// The results files of one solution: each of `--json`, `--obj`, `--vtk`, `--csv`,
+    /// `--forces-csv` given, at its path with `.STAGE` before the extension when `stage` is named.
     fn results_files(
         &self,
         sol: &job::Solution,
@@ -51,6 +53,9 @@ impl Outputs {
         }
         if let Some(p) = &self.obj {
             files.push((at(p), obj::to_obj(&sol.results).into_bytes()));
+        }
+        if let Some(p) = &self.vtk {
+            files.push((at(p), vtk_bytes(p, &sol.results)?));
         }
         if let Some(p) = &self.csv {
             files.push((at(p), csv::to_csv(&sol.equilibrium).into_bytes()));

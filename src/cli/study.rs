@@ -91,6 +91,7 @@ fn hemisphere_problem(a: &ConvergenceArgs) -> Result<Problem, String> {
         scene_out: None,
         json: None,
         obj: None,
+        vtk: None,
         report: None,
         out_dir: None,
         modes: None,

@@ -1,79 +1,13 @@
-//! A picture of an equilibrium: three orthographic views and an axonometric one, rods coloured
-//! by extreme-fibre bending stress, with a colour scale. Lines are drawn by plotters' in-memory
-//! bitmap backend; labels use a built-in 5×7 bitmap font (plotters' text needs a font stack
-//! and system fonts); the PNG is encoded here so that the caller can write it atomically.
+//! A picture of an equilibrium: three orthographic views and an axonometric one, the rest shape
+//! under the deformed one (displacements scaled by the deflection scale), the supports and the
+//! point loads, rods coloured by a chosen quantity with a colour scale. Drawn by plotters'
+//! in-memory bitmap backend with text in an embedded font ([`crate::io::text`]); the PNG is
+//! encoded here so that the caller can write it atomically.
 
 use plotters::prelude::*;
 
-use crate::io::results::{Results, RodJson};
-
-/// One rod to draw.
-#[derive(Debug, Clone, PartialEq)]
-pub struct PlotRod {
-    pub name: String,
-    pub points: Vec<[f64; 3]>,
-    /// Bending stress at each node, Pa (same length as `points`).
-    pub stress: Vec<f64>,
-    pub closed: bool,
-}
-
-/// Reads the rods of a results JSON through the results schema ([`Results`]): `points` per
-/// rod, per-node `bending_stress` when present, else the rod's `max_bending_stress`, else zero.
-/// Errors name the file (`file`), and the line, column and key of the offending value.
-pub fn rods_from_json(file: &str, text: &str) -> Result<Vec<PlotRod>, String> {
-    let de = &mut serde_json::Deserializer::from_str(text);
-    let results: Results = serde_path_to_error::deserialize(de).map_err(|e| {
-        let inner = e.inner();
-        if e.path().iter().next().is_none() && inner.to_string().starts_with("missing field `rods`")
-        {
-            format!("{file}: no `rods` array: not a rodnet results JSON")
-        } else {
-            format!(
-                "{file}:{}:{}: {}: {inner}",
-                inner.line(),
-                inner.column(),
-                e.path()
-            )
-        }
-    })?;
-    if results.rods.is_empty() {
-        return Err(format!("{file}: `rods` is empty: nothing to draw"));
-    }
-    results
-        .rods
-        .into_iter()
-        .enumerate()
-        .map(|(i, r)| plot_rod(i, r).map_err(|e| format!("{file}: {e}")))
-        .collect()
-}
-
-fn plot_rod(i: usize, r: RodJson) -> Result<PlotRod, String> {
-    let n = r.points.len();
-    if n < 2 {
-        return Err(format!("rods[{i}].points: needs at least 2 points"));
-    }
-    let stress = if r.bending_stress.is_empty() {
-        vec![r.max_bending_stress; n]
-    } else if r.bending_stress.len() != n {
-        return Err(format!(
-            "rods[{i}].bending_stress: {} values for {n} points",
-            r.bending_stress.len()
-        ));
-    } else if let Some(k) = r.bending_stress.iter().position(|x| !x.is_finite()) {
-        return Err(format!(
-            "rods[{i}].bending_stress[{k}]: not a finite number"
-        ));
-    } else {
-        r.bending_stress
-    };
-    Ok(PlotRod {
-        name: r.name,
-        // Closed rods have as many edges (twist angles) as nodes.
-        closed: r.twist.len() == n,
-        points: r.points,
-        stress,
-    })
-}
+pub use crate::io::plot_data::{read, Picture, PlotRod, Quantity};
+pub use crate::io::text::{draw_text, text_width};
 
 /// Viridis, sampled at five stops.
 const STOPS: [[f64; 3]; 5] = [
@@ -101,11 +35,11 @@ type Projection = fn(&[f64; 3]) -> (f64, f64);
 
 /// Views: name and projection to (right, up) screen coordinates.
 const VIEWS: [(&str, Projection); 4] = [
-    ("TOP (X RIGHT, Y UP)", |p| (p[0], p[1])),
-    ("FRONT (X RIGHT, Z UP)", |p| (p[0], p[2])),
-    ("SIDE (Y RIGHT, Z UP)", |p| (p[1], p[2])),
+    ("Top (x right, y up)", |p| (p[0], p[1])),
+    ("Front (x right, z up)", |p| (p[0], p[2])),
+    ("Side (y right, z up)", |p| (p[1], p[2])),
     // Seen from (1, -1, 1): right = (1, 1, 0)/√2, up = (-1, 1, 2)/√6.
-    ("AXONOMETRIC", |p| {
+    ("Axonometric", |p| {
         (
             (p[0] + p[1]) / std::f64::consts::SQRT_2,
             (-p[0] + p[1] + 2.0 * p[2]) / 6f64.sqrt(),
@@ -114,54 +48,68 @@ const VIEWS: [(&str, Projection); 4] = [
 ];
 
 const TITLE_H: u32 = 34;
-/// Height of the colour-scale band at the bottom, pixels.
-pub const LEGEND_H: u32 = 64;
-const PAD: f64 = 26.0;
+/// Height of the band at the bottom with the colour scale and the key, pixels.
+pub const LEGEND_H: u32 = 88;
+const PAD: f64 = 30.0;
 const TEXT: [u8; 3] = [30, 30, 30];
+/// The rest shape: a light blue-grey, unlike the colour scale and the (neutral) text.
+pub const REST: [u8; 3] = [150, 170, 205];
+/// Supports.
+pub const SUPPORT: [u8; 3] = [0, 0, 0];
+/// Point loads.
+pub const LOAD: [u8; 3] = [215, 40, 40];
 
-/// Renders the rods into a PNG of `width` × `height` pixels.
-pub fn render(rods: &[PlotRod], width: u32, height: u32, title: &str) -> Result<Vec<u8>, String> {
+fn rgb(c: [u8; 3]) -> RGBColor {
+    RGBColor(c[0], c[1], c[2])
+}
+
+/// A segment to draw: ends and colour parameter in [0, 1].
+type Segment = ([f64; 3], [f64; 3], f64);
+
+fn segments(p: &Picture) -> (Vec<Segment>, Vec<Segment>) {
+    let (lo, hi) = p.range;
+    let (mut drawn, mut rest) = (Vec::new(), Vec::new());
+    for r in &p.rods {
+        let n = r.points.len();
+        for (k, v) in r.values.iter().enumerate() {
+            let j = (k + 1) % n;
+            let t = if hi > lo { (v - lo) / (hi - lo) } else { 0.0 };
+            drawn.push((r.points[k], r.points[j], t));
+            if let Some(q) = &r.rest {
+                rest.push((q[k], q[j], 0.0));
+            }
+        }
+    }
+    // Low values first, so that peaks stay visible.
+    drawn.sort_by(|a, b| a.2.total_cmp(&b.2));
+    (drawn, rest)
+}
+
+/// Renders the picture into a PNG of `width` × `height` pixels.
+pub fn render(p: &Picture, width: u32, height: u32, title: &str) -> Result<Vec<u8>, String> {
     if width < 200 || height < 200 {
         return Err(format!(
             "the picture must be at least 200 × 200 pixels, got {width} × {height}"
         ));
     }
-    let smax = rods
-        .iter()
-        .flat_map(|r| r.stress.iter())
-        .copied()
-        .filter(|s| s.is_finite())
-        .fold(0.0, f64::max);
-    // Segments with their colour parameter, drawn low stress first so peaks stay visible.
-    let mut segs: Vec<([f64; 3], [f64; 3], f64)> = Vec::new();
-    for r in rods {
-        let n = r.points.len();
-        let m = if r.closed { n } else { n - 1 };
-        for k in 0..m {
-            let j = (k + 1) % n;
-            // The larger end: node stresses are zero at rod ends, also at clamped ones, where
-            // the moment is often largest.
-            let s = r.stress[k].max(r.stress[j]);
-            let t = if smax > 0.0 { s / smax } else { 0.0 };
-            segs.push((r.points[k], r.points[j], t));
-        }
-    }
-    segs.sort_by(|a, b| a.2.total_cmp(&b.2));
-
+    let (drawn, rest) = segments(p);
     let (w, h) = (width as usize, height as usize);
     let mut buf = vec![255u8; w * h * 3];
     let panel_w = width / 2;
     let panel_h = (height - TITLE_H - LEGEND_H) / 2;
     let origin = |v: usize| ((v % 2) as u32 * panel_w, TITLE_H + (v / 2) as u32 * panel_h);
+    let all: Vec<[f64; 3]> = drawn
+        .iter()
+        .chain(&rest)
+        .flat_map(|(a, b, _)| [*a, *b])
+        .collect();
     // One scale for the three orthographic views, so lengths compare across them.
     let fit = |proj: Projection| {
         let (mut lo, mut hi) = ([f64::INFINITY; 2], [f64::NEG_INFINITY; 2]);
-        for r in rods {
-            for p in &r.points {
-                let (u, v) = proj(p);
-                lo = [lo[0].min(u), lo[1].min(v)];
-                hi = [hi[0].max(u), hi[1].max(v)];
-            }
+        for q in &all {
+            let (u, v) = proj(q);
+            lo = [lo[0].min(u), lo[1].min(v)];
+            hi = [hi[0].max(u), hi[1].max(v)];
         }
         let span = [(hi[0] - lo[0]).max(1e-300), (hi[1] - lo[1]).max(1e-300)];
         let su = (panel_w as f64 - 2.0 * PAD) / span[0];
@@ -170,8 +118,9 @@ pub fn render(rods: &[PlotRod], width: u32, height: u32, title: &str) -> Result<
     };
     let ortho = VIEWS[..3]
         .iter()
-        .map(|(_, p)| fit(*p).0)
+        .map(|(_, q)| fit(*q).0)
         .fold(f64::INFINITY, f64::min);
+    let fmax = p.loads.iter().map(|l| norm(l.force)).fold(0.0, f64::max);
     let mut labels: Vec<(u32, u32, u32, String)> = Vec::new();
     {
         let root = BitMapBackend::with_buffer(&mut buf, (width, height)).into_drawing_area();
@@ -182,12 +131,14 @@ pub fn render(rods: &[PlotRod], width: u32, height: u32, title: &str) -> Result<
             let scale = if v < 3 { ortho } else { s };
             let cx = x0 as f64 + panel_w as f64 / 2.0;
             let cy = y0 as f64 + 12.0 + panel_h as f64 / 2.0;
-            let to_px = |p: &[f64; 3]| {
-                let (u, w) = proj(p);
-                (
-                    (cx + (u - centre[0]) * scale).round() as i32,
-                    (cy - (w - centre[1]) * scale).round() as i32,
-                )
+            let view = View {
+                proj: *proj,
+                to_px: &|u: f64, w: f64| {
+                    (
+                        (cx + (u - centre[0]) * scale).round() as i32,
+                        (cy - (w - centre[1]) * scale).round() as i32,
+                    )
+                },
             };
             root.draw(&Rectangle::new(
                 [
@@ -197,49 +148,31 @@ pub fn render(rods: &[PlotRod], width: u32, height: u32, title: &str) -> Result<
                 RGBColor(200, 200, 200).stroke_width(1),
             ))
             .map_err(err)?;
-            for (a, b, t) in &segs {
-                let [r, g, bl] = colour(*t);
-                root.draw(&PathElement::new(
-                    vec![to_px(a), to_px(b)],
-                    RGBColor(r, g, bl).stroke_width(3),
-                ))
-                .map_err(err)?;
+            for (a, b, _) in &rest {
+                root.draw(&PathElement::new(vec![view.px(a), view.px(b)], rgb(REST)))
+                    .map_err(err)?;
+            }
+            for (a, b, t) in &drawn {
+                let style = rgb(colour(*t)).stroke_width(3);
+                root.draw(&PathElement::new(vec![view.px(a), view.px(b)], style))
+                    .map_err(err)?;
+            }
+            for s in &p.supports {
+                draw_support(&root, view.px(&s.at), &s.kind).map_err(err)?;
+            }
+            for l in &p.loads {
+                draw_load(&root, &view, l, fmax).map_err(err)?;
             }
             labels.push((
                 x0 + 12,
-                y0 + 12,
+                y0 + 10,
                 fitting(name, panel_w - 24),
                 name.to_string(),
             ));
         }
-        let (bx0, by0) = (width / 6, height - LEGEND_H + 14);
-        let bw = width * 2 / 3;
         root.present().map_err(err)?;
-        labels.push((bx0, by0 + 24, 2, "0 PA".into()));
-        let max = format!("{} PA", fmt_sci(smax));
-        labels.push((bx0 + bw - text_width(&max, 2), by0 + 24, 2, max.clone()));
-        // The caption goes between the end labels, shortened or left out when they would touch.
-        let free = (
-            bx0 + text_width("0 PA", 2) + 12,
-            bx0 + bw - text_width(&max, 2) - 12,
-        );
-        if let Some(c) = ["EXTREME-FIBRE BENDING STRESS", "BENDING STRESS"]
-            .into_iter()
-            .find(|c| text_width(c, 2) <= free.1.saturating_sub(free.0))
-        {
-            let x = (width / 2 - text_width(c, 2) / 2).clamp(free.0, free.1 - text_width(c, 2));
-            labels.push((x, by0 + 24, 2, c.into()));
-        }
     }
-    // Colour scale under the views.
-    let (bx0, by0, bw) = (w / 6, h - LEGEND_H as usize + 14, w * 2 / 3);
-    for i in 0..bw {
-        let c = colour(i as f64 / (bw - 1) as f64);
-        for y in by0..by0 + 16 {
-            let at = 3 * (y * w + bx0 + i);
-            buf[at..at + 3].copy_from_slice(&c);
-        }
-    }
+    legend(&mut buf, p, width, height, &mut labels);
     for (x, y, scale, s) in &labels {
         draw_text(&mut buf, w, h, *x, *y, *scale, TEXT, s);
     }
@@ -254,6 +187,173 @@ pub fn render(rods: &[PlotRod], width: u32, height: u32, title: &str) -> Result<
         title,
     );
     encode_png(&buf, width, height)
+}
+
+/// A view's projection and its map from projected coordinates to pixels.
+struct View<'a> {
+    proj: Projection,
+    to_px: &'a dyn Fn(f64, f64) -> (i32, i32),
+}
+
+impl View<'_> {
+    fn px(&self, p: &[f64; 3]) -> (i32, i32) {
+        let (u, v) = (self.proj)(p);
+        (self.to_px)(u, v)
+    }
+
+    /// Screen direction (right, down) of a vector, scaled as the view scales lengths.
+    fn direction(&self, d: [f64; 3]) -> (f64, f64) {
+        let (o, e) = ((self.proj)(&[0.0; 3]), (self.proj)(&d));
+        (e.0 - o.0, -(e.1 - o.1))
+    }
+}
+
+fn norm(v: [f64; 3]) -> f64 {
+    (v[0] * v[0] + v[1] * v[1] + v[2] * v[2]).sqrt()
+}
+
+type Area<'a> = DrawingArea<BitMapBackend<'a>, plotters::coord::Shift>;
+type DrawResult<'a> =
+    Result<(), DrawingAreaErrorKind<<BitMapBackend<'a> as DrawingBackend>::ErrorType>>;
+
+/// A clamp as a square, a pin as a triangle under the node, a roller as an open one, a spring
+/// as a ring.
+fn draw_support<'a>(root: &Area<'a>, (x, y): (i32, i32), kind: &str) -> DrawResult<'a> {
+    let c = rgb(SUPPORT);
+    let tri = vec![(x, y), (x - 7, y + 12), (x + 7, y + 12), (x, y)];
+    match kind {
+        "clamp" => root.draw(&Rectangle::new(
+            [(x - 6, y - 6), (x + 6, y + 6)],
+            c.filled(),
+        )),
+        "roller" => root.draw(&PathElement::new(tri, c.stroke_width(2))),
+        "spring" => root.draw(&Circle::new((x, y), 6, c.stroke_width(2))),
+        _ => root.draw(&Polygon::new(tri, c.filled())),
+    }
+}
+
+/// A force as an arrow that ends at its node, longer for larger forces; a force along the
+/// line of sight, or a torque, as a ring around the node.
+fn draw_load<'a>(
+    root: &Area<'a>,
+    view: &View,
+    l: &crate::io::plot_data::PointLoad,
+    fmax: f64,
+) -> DrawResult<'a> {
+    let c = rgb(LOAD);
+    let (x, y) = view.px(&l.at);
+    let f = norm(l.force);
+    if f > 0.0 {
+        let (dx, dy) = view.direction(l.force.map(|v| v / f));
+        let shown = (dx * dx + dy * dy).sqrt();
+        if shown > 0.2 {
+            let len = 18.0 + 32.0 * f / fmax;
+            let (ux, uy) = (dx / shown, dy / shown);
+            let tail = ((x as f64 - len * ux) as i32, (y as f64 - len * uy) as i32);
+            root.draw(&PathElement::new(vec![tail, (x, y)], c.stroke_width(2)))?;
+            for s in [-0.45f64, 0.45] {
+                let (cs, sn) = (s.cos(), s.sin());
+                let (bx, by) = (ux * cs - uy * sn, ux * sn + uy * cs);
+                let end = ((x as f64 - 9.0 * bx) as i32, (y as f64 - 9.0 * by) as i32);
+                root.draw(&PathElement::new(vec![end, (x, y)], c.stroke_width(2)))?;
+            }
+        } else {
+            root.draw(&Circle::new((x, y), 5, c.stroke_width(2)))?;
+        }
+    }
+    if norm(l.moment) > 0.0 {
+        root.draw(&Circle::new((x, y), 9, c.stroke_width(2)))?;
+    }
+    Ok(())
+}
+
+/// The colour scale with its end values and caption, and the key to the other marks.
+fn legend(
+    buf: &mut [u8],
+    p: &Picture,
+    width: u32,
+    height: u32,
+    labels: &mut Vec<(u32, u32, u32, String)>,
+) {
+    let w = width as usize;
+    let (bx0, by0, bw) = (width / 6, height - LEGEND_H + 8, width * 2 / 3);
+    for i in 0..bw as usize {
+        let c = colour(i as f64 / (bw - 1) as f64);
+        for y in by0 as usize..by0 as usize + 14 {
+            let at = 3 * (y * w + bx0 as usize + i);
+            buf[at..at + 3].copy_from_slice(&c);
+        }
+    }
+    let (caption, unit) = p.quantity.caption();
+    let value = |x: f64| format!("{} {unit}", fmt_sci(x)).trim_end().to_string();
+    let (lo, hi) = (value(p.range.0), value(p.range.1));
+    let y = by0 + 20;
+    labels.push((bx0, y, 2, lo.clone()));
+    labels.push((bx0 + bw - text_width(&hi, 2), y, 2, hi.clone()));
+    // The caption goes between the end labels, left out when it would touch them.
+    let free = (
+        bx0 + text_width(&lo, 2) + 12,
+        bx0 + bw - text_width(&hi, 2) - 12,
+    );
+    let cw = text_width(caption, 2);
+    if cw <= free.1.saturating_sub(free.0) {
+        let x = (width / 2 - cw / 2).clamp(free.0, free.1 - cw);
+        labels.push((x, y, 2, caption.into()));
+    }
+    let key = key(p);
+    if !key.is_empty() {
+        let scale = fitting(&key, width - 24);
+        let x = (width / 2)
+            .saturating_sub(text_width(&key, scale) / 2)
+            .max(12);
+        labels.push((x, y + 26, scale, key));
+    }
+}
+
+/// What the marks mean, for those the picture has.
+fn key(p: &Picture) -> String {
+    let mut parts = Vec::new();
+    if p.rods.iter().any(|r| r.rest.is_some()) {
+        parts.push(format!(
+            "blue-grey: undeformed; deformed shape drawn with displacements × {}",
+            p.deflection_scale
+        ));
+    }
+    let mut kinds: Vec<&str> = p.supports.iter().map(|s| s.kind.as_str()).collect();
+    kinds.sort_unstable();
+    kinds.dedup();
+    let marks: Vec<String> = kinds
+        .iter()
+        .map(|k| match *k {
+            "clamp" => "■ clamp".to_string(),
+            "roller" => "△ roller".to_string(),
+            "spring" => "○ spring".to_string(),
+            k => format!("▲ {k}"),
+        })
+        .collect();
+    if !marks.is_empty() {
+        parts.push(marks.join("  "));
+    }
+    let fmax = p.loads.iter().map(|l| norm(l.force)).fold(0.0, f64::max);
+    if fmax > 0.0 {
+        parts.push(format!(
+            "red arrows: point loads (largest {} N)",
+            fmt_sci(fmax)
+        ));
+    }
+    if p.loads.iter().any(|l| norm(l.moment) > 0.0) {
+        parts.push("red rings: torques".into());
+    }
+    parts.join("   ·   ")
+}
+
+/// The text scale, 2 or 1, at which `s` fits in `room` pixels (too long text is clipped).
+fn fitting(s: &str, room: u32) -> u32 {
+    if text_width(s, 2) <= room {
+        2
+    } else {
+        1
+    }
 }
 
 /// `1.23E+08`-style numbers for the labels.
@@ -286,115 +386,6 @@ pub(crate) fn encode_png(rgb: &[u8], width: u32, height: u32) -> Result<Vec<u8>,
     Ok(out)
 }
 
-/// 5×7 glyphs, one byte per row, high bit on the left of five.
-const FONT: &[(char, [u8; 7])] = &[
-    ('A', [0x0E, 0x11, 0x11, 0x1F, 0x11, 0x11, 0x11]),
-    ('B', [0x1E, 0x11, 0x11, 0x1E, 0x11, 0x11, 0x1E]),
-    ('C', [0x0E, 0x11, 0x10, 0x10, 0x10, 0x11, 0x0E]),
-    ('D', [0x1E, 0x11, 0x11, 0x11, 0x11, 0x11, 0x1E]),
-    ('E', [0x1F, 0x10, 0x10, 0x1E, 0x10, 0x10, 0x1F]),
-    ('F', [0x1F, 0x10, 0x10, 0x1E, 0x10, 0x10, 0x10]),
-    ('G', [0x0E, 0x11, 0x10, 0x17, 0x11, 0x11, 0x0F]),
-    ('H', [0x11, 0x11, 0x11, 0x1F, 0x11, 0x11, 0x11]),
-    ('I', [0x0E, 0x04, 0x04, 0x04, 0x04, 0x04, 0x0E]),
-    ('J', [0x07, 0x02, 0x02, 0x02, 0x02, 0x12, 0x0C]),
-    ('K', [0x11, 0x12, 0x14, 0x18, 0x14, 0x12, 0x11]),
-    ('L', [0x10, 0x10, 0x10, 0x10, 0x10, 0x10, 0x1F]),
-    ('M', [0x11, 0x1B, 0x15, 0x15, 0x11, 0x11, 0x11]),
-    ('N', [0x11, 0x11, 0x19, 0x15, 0x13, 0x11, 0x11]),
-    ('O', [0x0E, 0x11, 0x11, 0x11, 0x11, 0x11, 0x0E]),
-    ('P', [0x1E, 0x11, 0x11, 0x1E, 0x10, 0x10, 0x10]),
-    ('Q', [0x0E, 0x11, 0x11, 0x11, 0x15, 0x12, 0x0D]),
-    ('R', [0x1E, 0x11, 0x11, 0x1E, 0x14, 0x12, 0x11]),
-    ('S', [0x0F, 0x10, 0x10, 0x0E, 0x01, 0x01, 0x1E]),
-    ('T', [0x1F, 0x04, 0x04, 0x04, 0x04, 0x04, 0x04]),
-    ('U', [0x11, 0x11, 0x11, 0x11, 0x11, 0x11, 0x0E]),
-    ('V', [0x11, 0x11, 0x11, 0x11, 0x11, 0x0A, 0x04]),
-    ('W', [0x11, 0x11, 0x11, 0x15, 0x15, 0x15, 0x0A]),
-    ('X', [0x11, 0x11, 0x0A, 0x04, 0x0A, 0x11, 0x11]),
-    ('Y', [0x11, 0x11, 0x0A, 0x04, 0x04, 0x04, 0x04]),
-    ('Z', [0x1F, 0x01, 0x02, 0x04, 0x08, 0x10, 0x1F]),
-    ('0', [0x0E, 0x11, 0x13, 0x15, 0x19, 0x11, 0x0E]),
-    ('1', [0x04, 0x0C, 0x04, 0x04, 0x04, 0x04, 0x0E]),
-    ('2', [0x0E, 0x11, 0x01, 0x02, 0x04, 0x08, 0x1F]),
-    ('3', [0x1F, 0x02, 0x04, 0x02, 0x01, 0x11, 0x0E]),
-    ('4', [0x02, 0x06, 0x0A, 0x12, 0x1F, 0x02, 0x02]),
-    ('5', [0x1F, 0x10, 0x1E, 0x01, 0x01, 0x11, 0x0E]),
-    ('6', [0x06, 0x08, 0x10, 0x1E, 0x11, 0x11, 0x0E]),
-    ('7', [0x1F, 0x01, 0x02, 0x04, 0x08, 0x08, 0x08]),
-    ('8', [0x0E, 0x11, 0x11, 0x0E, 0x11, 0x11, 0x0E]),
-    ('9', [0x0E, 0x11, 0x11, 0x0F, 0x01, 0x02, 0x0C]),
-    (' ', [0x00; 7]),
-    ('.', [0x00, 0x00, 0x00, 0x00, 0x00, 0x0C, 0x0C]),
-    (',', [0x00, 0x00, 0x00, 0x00, 0x0C, 0x04, 0x08]),
-    ('-', [0x00, 0x00, 0x00, 0x1F, 0x00, 0x00, 0x00]),
-    ('+', [0x00, 0x04, 0x04, 0x1F, 0x04, 0x04, 0x00]),
-    (':', [0x00, 0x0C, 0x0C, 0x00, 0x0C, 0x0C, 0x00]),
-    ('(', [0x02, 0x04, 0x08, 0x08, 0x08, 0x04, 0x02]),
-    (')', [0x08, 0x04, 0x02, 0x02, 0x02, 0x04, 0x08]),
-    ('/', [0x00, 0x01, 0x02, 0x04, 0x08, 0x10, 0x00]),
-    ('_', [0x00, 0x00, 0x00, 0x00, 0x00, 0x00, 0x1F]),
-    ('=', [0x00, 0x00, 0x1F, 0x00, 0x1F, 0x00, 0x00]),
-    ('%', [0x18, 0x19, 0x02, 0x04, 0x08, 0x13, 0x03]),
-    ('?', [0x0E, 0x11, 0x01, 0x02, 0x04, 0x00, 0x04]),
-];
-
-fn glyph(c: char) -> [u8; 7] {
-    let c = c.to_ascii_uppercase();
-    FONT.iter()
-        .find(|(g, _)| *g == c)
-        .or_else(|| FONT.iter().find(|(g, _)| *g == '?'))
-        .map(|(_, rows)| *rows)
-        .unwrap_or([0; 7])
-}
-
-/// The text scale, 2 or 1, at which `s` fits in `room` pixels (too long text is clipped).
-fn fitting(s: &str, room: u32) -> u32 {
-    if text_width(s, 2) <= room {
-        2
-    } else {
-        1
-    }
-}
-
-/// Width in pixels of `s` at `scale` (6 columns per glyph, the last one blank).
-pub fn text_width(s: &str, scale: u32) -> u32 {
-    6 * scale * s.chars().count() as u32
-}
-
-#[allow(clippy::too_many_arguments)]
-pub(crate) fn draw_text(
-    buf: &mut [u8],
-    w: usize,
-    h: usize,
-    x: u32,
-    y: u32,
-    scale: u32,
-    rgb: [u8; 3],
-    s: &str,
-) {
-    for (i, c) in s.chars().enumerate() {
-        let rows = glyph(c);
-        let gx = x as usize + i * 6 * scale as usize;
-        for (r, bits) in rows.iter().enumerate() {
-            for col in 0..5 {
-                if bits & (0x10 >> col) == 0 {
-                    continue;
-                }
-                for dy in 0..scale as usize {
-                    for dx in 0..scale as usize {
-                        let px = gx + col * scale as usize + dx;
-                        let py = y as usize + r * scale as usize + dy;
-                        if px < w && py < h {
-                            buf[3 * (py * w + px)..3 * (py * w + px) + 3].copy_from_slice(&rgb);
-                        }
-                    }
-                }
-            }
-        }
-    }
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -415,15 +406,5 @@ mod tests {
         assert_eq!(fmt_sci(0.0), "0");
         assert_eq!(fmt_sci(123456789.0), "1.235E+08");
         assert_eq!(fmt_sci(0.00125), "1.250E-03");
-    }
-
-    #[test]
-    fn every_label_character_has_a_glyph() {
-        let q = glyph('?');
-        for c in "0123456789 .-+:()/ABCDEFGHIJKLMNOPQRSTUVWXYZ".chars() {
-            assert!(c == '?' || glyph(c) != q, "{c}");
-        }
-        assert_eq!(glyph('a'), glyph('A'));
-        assert_eq!(glyph('é'), q);
     }
 }

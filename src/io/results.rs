@@ -63,6 +63,12 @@ pub struct RodJson {
     /// `yield_strength` only).
     #[serde(skip_serializing_if = "Option::is_none")]
     pub utilization: Option<f64>,
+    /// Every node in the rest shape, m (extension).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub rest_points: Vec<[f64; 3]>,
+    /// Scenes with a target: signed distance of each node to it, m (extension).
+    #[serde(skip_serializing_if = "Vec::is_empty")]
+    pub target_distance: Vec<f64>,
 }
 
 /// One edge's entry of `forces`: what the part of the rod after the edge's midpoint exerts on
@@ -77,6 +83,9 @@ pub struct EdgeForceJson {
     pub moment: [f64; 2],
     /// About t, N·m.
     pub torsion: f64,
+    /// Von Mises stress over yield strength (materials with a `yield_strength` only).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub utilization: Option<f64>,
 }
 
 impl From<&EdgeForces> for EdgeForceJson {
@@ -86,6 +95,7 @@ impl From<&EdgeForces> for EdgeForceJson {
             shear: f.shear,
             moment: f.moment,
             torsion: f.torsion,
+            utilization: f.utilization,
         }
     }
 }
@@ -96,6 +106,7 @@ impl EdgeForceJson {
             .iter()
             .chain(&self.shear)
             .chain(&self.moment)
+            .chain(&self.utilization)
             .all(|v| v.is_finite())
     }
 }
@@ -110,9 +121,28 @@ pub struct JointJson {
 pub struct ReactionJson {
     pub rod: String,
     pub vertex: usize,
+    /// Index of the vertex's node in the rod's `points` (extension).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub node: Option<usize>,
+    /// "pin", "clamp", "roller" or "spring" (extension).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub kind: Option<String>,
     /// Force the support exerts on the structure, N.
     pub force: [f64; 3],
     /// Moment the support exerts (clamps), N·m.
+    pub moment: [f64; 3],
+}
+
+/// A point force or torque of the scene at the final load factor (extension).
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct LoadJson {
+    pub rod: String,
+    pub vertex: usize,
+    /// Index of the vertex's node in the rod's `points`.
+    pub node: usize,
+    /// N.
+    pub force: [f64; 3],
+    /// N·m.
     pub moment: [f64; 3],
 }
 
@@ -266,6 +296,9 @@ pub struct Results {
     pub joints: Vec<JointJson>,
     #[serde(default)]
     pub reactions: Vec<ReactionJson>,
+    /// The scene's point forces and torques, where they act (extension; gravity not listed).
+    #[serde(default, skip_serializing_if = "Vec::is_empty")]
+    pub loads: Vec<LoadJson>,
     #[serde(skip_serializing_if = "Option::is_none")]
     pub target: Option<TargetJson>,
     /// Fitted gridshells: their Chebyshev net (the same block as `target.net`).
@@ -364,6 +397,8 @@ impl Results {
                     length: r.length,
                     forces: r.forces.iter().map(EdgeForceJson::from).collect(),
                     utilization: r.utilization,
+                    rest_points: r.rest_points.clone(),
+                    target_distance: r.target_distance.clone().unwrap_or_default(),
                 }
             })
             .collect();
@@ -378,11 +413,24 @@ impl Results {
         let reactions = eq
             .reactions
             .iter()
-            .map(|(rod, vertex, r)| ReactionJson {
-                rod: rod.clone(),
-                vertex: *vertex,
-                force: r.force,
-                moment: r.moment,
+            .map(|s| ReactionJson {
+                rod: s.rod.clone(),
+                vertex: s.vertex,
+                node: Some(s.node),
+                kind: Some(s.kind.into()),
+                force: s.reaction.force,
+                moment: s.reaction.moment,
+            })
+            .collect();
+        let loads = eq
+            .loads
+            .iter()
+            .map(|l| LoadJson {
+                rod: l.rod.clone(),
+                vertex: l.vertex,
+                node: l.node,
+                force: l.force,
+                moment: l.moment,
             })
             .collect();
         let (contacts, kkt) = match &eq.constraints {
@@ -415,6 +463,7 @@ impl Results {
             rods,
             joints,
             reactions,
+            loads,
             target: eq.target.as_ref().map(TargetJson::from),
             net: eq.target.as_ref().and_then(|t| t.net.clone()),
             reference: eq.reference.clone(),
@@ -459,7 +508,8 @@ impl Results {
         .all(fin)
             && self.rods.iter().all(|r| {
                 let re = &r.energy;
-                r.points.iter().flatten().all(fin)
+                r.points.iter().chain(&r.rest_points).flatten().all(fin)
+                    && r.target_distance.iter().all(fin)
                     && r.twist.iter().all(fin)
                     && r.bending_stress.iter().all(fin)
                     && r.forces.iter().all(EdgeForceJson::all_finite)
@@ -474,6 +524,10 @@ impl Results {
                 .reactions
                 .iter()
                 .all(|r| r.force.iter().chain(&r.moment).all(fin))
+            && self
+                .loads
+                .iter()
+                .all(|l| l.force.iter().chain(&l.moment).all(fin))
             && self.target.as_ref().is_none_or(|t| {
                 [
                     t.max_abs_radial_deviation,

@@ -43,6 +43,7 @@ pub fn unit(name: &str) -> &'static str {
         (_, "bending_stress" | "von_mises") => "Pa",
         (_, "density") => "kg/m^3",
         (_, "radius" | "width" | "height" | "a" | "b" | "length" | "points" | "position") => "m",
+        (_, "rest_points" | "target_distance") => "m",
         (_, "move_to" | "gap" | "primal_feasibility") => "m",
         (_, "force" | "axial" | "shear") => "N",
         (_, "moment" | "torsion") => "N m",
@@ -55,7 +56,7 @@ pub fn unit(name: &str) -> &'static str {
             "rods" | "subdivide" | "load_steps" | "max_iterations" | "iterations" | "modes"
             | "section_ratio" | "poisson_ratio" | "tolerance" | "residual" | "residual_floor"
             | "start_cap" | "crossings" | "nodes" | "substeps" | "retries" | "free_unknowns"
-            | "vertex",
+            | "vertex" | "node",
         ) => "1",
         _ => "?",
     }

@@ -15,7 +15,9 @@ use serde::{Deserialize, Serialize};
 
 use crate::network::assembly::Assembly;
 use crate::network::model::{EnergyParts, KindEnergy};
+use crate::network::rest;
 use crate::network::Network;
+use crate::scene::types::{Load, SupportKind};
 use crate::scene::Scene;
 use crate::solver::NewtonReport;
 
@@ -45,6 +47,11 @@ pub struct RodEquilibrium {
     pub forces: Vec<EdgeForces>,
     /// Largest utilization over the rod's edges, when its material has a yield strength.
     pub utilization: Option<f64>,
+    /// Every node in the rest shape, m (pictures draw the undeformed shape from these).
+    pub rest_points: Vec<[f64; 3]>,
+    /// Scenes with a target: signed distance of each node to it, m (sphere: radial, positive
+    /// outside; mesh: along its normals).
+    pub target_distance: Option<Vec<f64>>,
 }
 
 /// The most utilized edge of the structure.
@@ -66,6 +73,32 @@ pub struct Reaction {
     pub moment: [f64; 3],
 }
 
+/// A support and what it exerts on the structure.
+#[derive(Debug, Clone, PartialEq)]
+pub struct SupportReaction {
+    pub rod: String,
+    /// Input vertex of the rod (scene numbering).
+    pub vertex: usize,
+    /// Index of the vertex's node in the rod's nodes (vertex × subdivide).
+    pub node: usize,
+    /// "pin", "clamp", "roller" or "spring".
+    pub kind: &'static str,
+    pub reaction: Reaction,
+}
+
+/// A point force or torque of the scene at the final state's load factor.
+#[derive(Debug, Clone, PartialEq)]
+pub struct AppliedLoad {
+    pub rod: String,
+    pub vertex: usize,
+    /// Index of the vertex's node in the rod's nodes.
+    pub node: usize,
+    /// N.
+    pub force: [f64; 3],
+    /// N·m.
+    pub moment: [f64; 3],
+}
+
 #[derive(Debug, Clone)]
 pub struct Equilibrium {
     /// By category; `external` is the loads' potential measured from the rest configuration
@@ -78,7 +111,9 @@ pub struct Equilibrium {
     pub joints: Vec<(String, [f64; 3])>,
     /// Support (rod, vertex) and its reaction. Supports that hold one node (frame) share its
     /// reaction: the first in scene order reports the whole force (moment), the others zero.
-    pub reactions: Vec<(String, usize, Reaction)>,
+    pub reactions: Vec<SupportReaction>,
+    /// The scene's point forces and torques (gravity, being distributed, is not listed).
+    pub loads: Vec<AppliedLoad>,
     /// Scenes with obstacles or bounds only.
     pub constraints: Option<ConstraintForces>,
     pub target: Option<TargetCheck>,
@@ -106,13 +141,18 @@ impl Equilibrium {
         let energies = rod_energy::per_rod(net);
         let bending = stress::all_vertex_bending(net);
         let forces = internal_forces::all_edge_forces(net);
+        let distance = scene
+            .target
+            .as_ref()
+            .and_then(|t| target::node_distances(net, t));
         let rods: Vec<RodEquilibrium> = net
             .rods
             .iter()
             .zip(energies)
             .zip(bending)
             .zip(forces)
-            .map(|(((r, energy), bending), forces)| RodEquilibrium {
+            .enumerate()
+            .map(|(i, (((r, energy), bending), forces))| RodEquilibrium {
                 name: r.name.clone(),
                 points: r.nodes.iter().map(|&n| m.position(n)).collect(),
                 twist: r.edges.iter().map(|&e| q[m.layout.theta(e)]).collect(),
@@ -122,6 +162,10 @@ impl Equilibrium {
                 axial_force: r.edges.iter().map(|&e| axial_force(net, e)).collect(),
                 utilization: most_utilized(&forces).map(|(_, u)| u),
                 forces,
+                rest_points: scene.rods.get(i).map(rest::rod_nodes).unwrap_or_default(),
+                target_distance: distance
+                    .as_ref()
+                    .map(|d| r.nodes.iter().map(|&n| d[n]).collect()),
             })
             .collect();
         let utilization = rods
@@ -142,7 +186,15 @@ impl Equilibrium {
         let reactions = net
             .supports
             .iter()
-            .map(|s| {
+            .zip(support_kinds(net, scene))
+            .map(|(s, kind)| {
+                let at = |reaction| SupportReaction {
+                    rod: s.rod.clone(),
+                    vertex: s.vertex,
+                    node: node_index(net, &s.rod, s.vertex),
+                    kind,
+                    reaction,
+                };
                 if s.spring.is_some() || s.rotational.is_some() {
                     // A spring's reaction is its own force (moment); the node and frame are
                     // free, so it takes no share of a fixed node's gradient.
@@ -152,7 +204,7 @@ impl Equilibrium {
                     let moment = s
                         .rotational
                         .map_or([0.0; 3], |k| m.terms.rotational_springs[k].moment(&m.state));
-                    return (s.rod.clone(), s.vertex, Reaction { force, moment });
+                    return at(Reaction { force, moment });
                 }
                 let at_node = m.layout.node(s.node).map(|v| full[v]);
                 let slanted = m.rollers.list.iter().find(|r| r.node == s.node);
@@ -166,7 +218,7 @@ impl Equilibrium {
                     Some(f) => m.layout.frame(f).map(|v| full[v]),
                     None => [0.0; 3],
                 };
-                (s.rod.clone(), s.vertex, Reaction { force, moment })
+                at(Reaction { force, moment })
             })
             .collect();
         let constraints = m.contact.as_ref().map(|c| {
@@ -189,6 +241,7 @@ impl Equilibrium {
                 .map(|j| (j.name.clone(), m.position(j.node)))
                 .collect(),
             reactions,
+            loads: applied_loads(net, scene),
             constraints,
             target: scene.target.as_ref().and_then(|t| target::check(net, t)),
             reference: reference::check(net, scene),
@@ -197,6 +250,49 @@ impl Equilibrium {
             utilization,
         }
     }
+}
+
+/// The kind of each support of `net`, which holds one support per scene support, in order.
+fn support_kinds(net: &Network, scene: &Scene) -> Vec<&'static str> {
+    (0..net.supports.len())
+        .map(|i| match scene.supports.get(i).map(|s| &s.kind) {
+            Some(SupportKind::Pin) => "pin",
+            Some(SupportKind::Clamp) => "clamp",
+            Some(SupportKind::Roller { .. }) => "roller",
+            Some(SupportKind::Spring { .. }) => "spring",
+            None => "support",
+        })
+        .collect()
+}
+
+/// Index in the rod's nodes of input vertex `vertex` of the rod named `rod`.
+fn node_index(net: &Network, rod: &str, vertex: usize) -> usize {
+    net.rod(rod).map_or(vertex, |r| vertex * r.subdivide)
+}
+
+/// The scene's point forces and torques, scaled by the load factor reached.
+fn applied_loads(net: &Network, scene: &Scene) -> Vec<AppliedLoad> {
+    let lambda = net.model.state.load_factor;
+    let at = |rod: &String, vertex: usize, force: [f64; 3], moment: [f64; 3]| AppliedLoad {
+        rod: rod.clone(),
+        vertex,
+        node: node_index(net, rod, vertex),
+        force: force.map(|f| lambda * f),
+        moment: moment.map(|m| lambda * m),
+    };
+    scene
+        .loads
+        .iter()
+        .filter_map(|l| match l {
+            Load::Force { rod, vertex, force } => Some(at(rod, *vertex, *force, [0.0; 3])),
+            Load::Torque {
+                rod,
+                vertex,
+                torque,
+            } => Some(at(rod, *vertex, [0.0; 3], *torque)),
+            Load::Gravity { .. } => None,
+        })
+        .collect()
 }
 
 /// The edge with the largest utilization and its value (the first of equal ones).

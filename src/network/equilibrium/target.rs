@@ -62,6 +62,36 @@ fn measured_nodes(net: &Network) -> Vec<usize> {
     }
 }
 
+/// Signed distance of every node of `net` to the target, m: radial for a sphere (positive
+/// outside), along the normals for a mesh. `None` when a mesh cannot be read.
+pub fn node_distances(net: &Network, t: &Target) -> Option<Vec<f64>> {
+    let m = &net.model;
+    let nodes = 0..net.n_nodes();
+    match t {
+        Target::Sphere { center, radius } => Some(
+            nodes
+                .map(|n| norm(sub(m.position(n), *center)) - radius)
+                .collect(),
+        ),
+        Target::Mesh { surface, path } => {
+            let loaded;
+            let s = match surface.0.as_ref() {
+                Some(s) => s,
+                None => {
+                    loaded = reload(path)?;
+                    &loaded
+                }
+            };
+            Some(nodes.map(|n| s.signed_distance(m.position(n))).collect())
+        }
+    }
+}
+
+/// A target mesh read again from its path (a scene copy that lost its mesh).
+fn reload(path: &str) -> Option<crate::surface::Surface> {
+    crate::surface::Surface::load(std::path::Path::new(path), crate::scene::MAX_MESH_BYTES).ok()
+}
+
 pub fn check(net: &Network, t: &Target) -> Option<TargetCheck> {
     let nodes = measured_nodes(net);
     let m = &net.model;
@@ -98,11 +128,7 @@ pub fn check(net: &Network, t: &Target) -> Option<TargetCheck> {
             let s = match surface.0.as_ref() {
                 Some(s) => s,
                 None => {
-                    loaded = crate::surface::Surface::load(
-                        std::path::Path::new(path),
-                        crate::scene::MAX_MESH_BYTES,
-                    )
-                    .ok()?;
+                    loaded = reload(path)?;
                     &loaded
                 }
             };
