@@ -221,14 +221,14 @@ pub fn analyse_modes(
     sol: &mut Solution,
     k: usize,
 ) -> Result<crate::network::stability::Stability, String> {
-    if sol.network.model.contact.is_some() {
-        return Err(
-            "--modes does not handle contact or bounds yet (the active constraints \
-                    would have to be held); solve without --modes"
-                .into(),
-        );
-    }
-    let st = crate::network::stability::analyse(&mut sol.network, k)?;
+    let st = match (&sol.network.model.contact, &sol.equilibrium.constraints) {
+        // The modes of the structure with its active set fixed.
+        (Some(_), Some(forces)) => {
+            let (mut held, _) = crate::network::active_set::hold_active(&sol.network, forces);
+            crate::network::stability::analyse(&mut held, k)?
+        }
+        _ => crate::network::stability::analyse(&mut sol.network, k)?,
+    };
     if !st.converged {
         eprintln!(
             "warning: the {k} lowest eigenvalues did not settle within {} rounds (largest \

@@ -148,6 +148,24 @@ impl Row {
     pub fn at(&self, c: &Contact, q: &[f64]) -> (f64, [f64; 3]) {
         self.eval(&c.shapes, c.layout.position(q, self.node))
     }
+
+    /// The row's curvature at positions `q`, for rows on curved surfaces: ∇²c = (I − nnᵀ)/d on
+    /// a ball, (I − nnᵀ − aaᵀ)/d on a cylinder of axis a, with d the node's distance from the
+    /// centre (axis). `(d, a)`; None where ∇²c = 0 (planes, bounds).
+    pub fn curvature(&self, c: &Contact, q: &[f64]) -> Option<(f64, Option<[f64; 3]>)> {
+        let Kind::Surface { shape, .. } = self.kind else {
+            return None;
+        };
+        let x = c.layout.position(q, self.node);
+        match c.shapes[shape] {
+            Shape::Plane { .. } => None,
+            Shape::Sphere { center, .. } => Some((norm(sub(x, center)), None)),
+            Shape::Cylinder { point, axis, .. } => {
+                let u = sub(x, point);
+                Some((norm(sub(u, scalef(axis, dot(u, axis)))), Some(axis)))
+            }
+        }
+    }
 }
 
 /// One surface row per obstacle and free rod node (in rod order), with the node's clearance.

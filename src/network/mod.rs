@@ -2,6 +2,7 @@
 //! assembled ([`assembly`]), lent to the solver ([`problem`]), and measured at equilibrium
 //! ([`equilibrium`]).
 
+pub mod active_set;
 pub mod assembly;
 pub mod buckle;
 pub mod budget;
