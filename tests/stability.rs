@@ -490,7 +490,7 @@ fn zero_of(s: &[(f64, f64, f64)]) -> f64 {
 
 /// Michell (1889): the planar twisted ring loses stability at Θc = 2π√3·EI/GJ. The ring of
 /// `michell.ron` made slender (r = 1 mm: its finite thickness moves the threshold by
-/// −4.9e-4 at r = 1 cm, as r²), N = 40 to 320 edges: the discrete Θc approaches Michell's from
+/// −4.9e-4 at r = 1 cm, about as r²), N = 40 to 320 edges: the discrete Θc approaches Michell's from
 /// below as 1/N² once N ≥ 80 (measured −4.49e-3, −1.26e-3, −3.24e-4, −8.5e-5).
 #[test]
 fn michell_ring_loses_stability_at_its_critical_twist() {
