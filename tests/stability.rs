@@ -334,3 +334,191 @@ fn the_gridshell_job_reports_its_modes() {
     assert_eq!(st["eigenvalues"].as_array().unwrap().len(), 3);
     assert!(st["eigenvalues"][0].as_f64().unwrap() > 0.0);
 }
+
+// ---------------------------------------------------------------------------------------------
+// Michell's twisted ring
+// ---------------------------------------------------------------------------------------------
+
+mod support;
+
+use rodnet::network::initial::RodState;
+
+/// `networks/extreme/michell.ron` (GJ/EI = 5) with radius `r`, `n` edges and total twist Θ:
+/// the far clamp turned by π about (0, sin Θ/2, cos Θ/2), the near clamp's final frame twisted
+/// by Θ about their common tangent.
+fn michell_ring(r: f64, n: usize, theta: f64) -> rodnet::scene::Scene {
+    use rodnet::scene::types::Section;
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/networks/extreme/michell.ron");
+    let mut s = rodnet::scene::load(std::path::Path::new(path)).unwrap().0;
+    s.rods[0].subdivide = n;
+    for m in s.materials.values_mut() {
+        m.section = Section::Circle { radius: r };
+    }
+    s.supports[1].rotate_by = Some([0.0, PI * (theta / 2.0).sin(), PI * (theta / 2.0).cos()]);
+    s
+}
+
+/// A planar equilibrium of the twisted ring: its lowest eigenvalue (N/m) other than the
+/// neutral one, the neutral one, its largest distance from the plane (m), and its rods to start
+/// the next Θ from.
+struct Planar {
+    buckling: f64,
+    neutral: f64,
+    off_plane: f64,
+    rods: Vec<RodState>,
+}
+
+/// Solves the ring twisted by Θ (from `from` when given: a few Newton iterations instead of
+/// the closing path) and analyses it; None when the solve left the planar path.
+fn michell_state(r: f64, n: usize, theta: f64, from: Option<&[RodState]>) -> Option<Planar> {
+    use rodnet::pipeline::{analyse_modes, settings_of, solve_scene, solve_scene_from};
+    let scene = michell_ring(r, n, theta);
+    let settings = settings_of(&scene);
+    let mut sol = match from {
+        Some(rods) => solve_scene_from(&scene, &settings, rods).ok().unwrap(),
+        None => solve_scene(&scene, &settings).unwrap(),
+    };
+    assert!(
+        sol.report.converged,
+        "Θ = {theta}: {:?}",
+        sol.report.message
+    );
+    // A saddle escape, or a restart that failed and solved from rest, may end off the path.
+    if sol.report.saddle_escapes > 0 || sol.report.message.is_some() {
+        return None;
+    }
+    let st = analyse_modes(&mut sol, 3).unwrap();
+    // One zero mode at every Θ: the isotropic ring's plane turning about the clamps' common
+    // tangent. The buckling mode is the lowest of the others.
+    let ev = &st.eigenvalues;
+    let neutral = (0..ev.len())
+        .min_by(|&a, &b| ev[a].abs().total_cmp(&ev[b].abs()))
+        .unwrap();
+    let buckling = (0..ev.len())
+        .filter(|&i| i != neutral)
+        .map(|i| ev[i])
+        .fold(f64::INFINITY, f64::min);
+    let rods = sol
+        .results
+        .rods
+        .iter()
+        .map(|r| RodState {
+            name: r.name.clone(),
+            points: r.points.clone(),
+            twist: r.twist.clone(),
+        })
+        .collect();
+    Some(Planar {
+        buckling,
+        neutral: ev[neutral],
+        off_plane: off_plane(&sol.results.rods[0].points),
+        rods,
+    })
+}
+
+/// The largest distance of the ring's nodes from the plane through the clamps' tangent (x)
+/// and the ring's centroid, m.
+fn off_plane(points: &[[f64; 3]]) -> f64 {
+    let p = &points[..points.len() - 1];
+    let c: Vec<f64> = (0..3)
+        .map(|k| p.iter().map(|q| q[k]).sum::<f64>() / p.len() as f64)
+        .collect();
+    // The plane's normal x̂ × c.
+    let (ny, nz) = (-c[2], c[1]);
+    points
+        .iter()
+        .map(|q| (q[1] * ny + q[2] * nz).abs() / ny.hypot(nz))
+        .fold(0.0, f64::max)
+}
+
+/// Fraction of its value at 0.8 Θc below which the buckling eigenvalue is no longer sampled:
+/// the discrete ring is planar only up to O(1/N²) (the clamps), so its bifurcation is an
+/// imperfect one and the eigenvalue levels off just above zero instead of crossing (0.21 N/m,
+/// 0.4 % of its 0.8 Θc value, for `michell.ron` itself, r = 1 cm, N = 40).
+const MICHELL_STOP: f64 = 0.02;
+
+/// The `n`-edge ring's critical twist: the zero of its buckling eigenvalue as a function of Θ,
+/// extrapolated from below (Θ as the quadratic in the eigenvalue through the last three
+/// samples). Samples from 0.8 and 0.9 of `guess`, each next one half way to the extrapolated
+/// zero, until the eigenvalue is below `MICHELL_STOP` of its first value. Returns Θc and the
+/// samples (Θ, eigenvalue, off-plane distance).
+fn michell_critical(r: f64, n: usize, guess: f64) -> (f64, Vec<(f64, f64, f64)>) {
+    let first = michell_state(r, n, 0.8 * guess, None).expect("a planar start");
+    let mut samples = vec![(0.8 * guess, first.buckling, first.off_plane)];
+    let mut rods = first.rods;
+    let mut next = 0.9 * guess;
+    for _ in 0..30 {
+        let (t, f, _) = *samples.last().unwrap();
+        // Past Θc the solve buckles out of plane (some 30 times the planar ring's O(1/N²)
+        // distance): back to half the step.
+        let Some(s) = michell_state(r, n, next, Some(&rods))
+            .filter(|s| s.buckling < f && s.off_plane < 10.0 * samples[0].2)
+        else {
+            next = t + 0.5 * (next - t);
+            continue;
+        };
+        samples.push((next, s.buckling, s.off_plane));
+        // The neutral mode is the zero one (round-off against the stretch stiffness), far below
+        // any buckling eigenvalue sampled.
+        assert!(
+            s.neutral.abs() < 1e-5 * samples[0].1,
+            "{samples:?}: {}",
+            s.neutral
+        );
+        rods = s.rods;
+        let est = zero_of(&samples[samples.len().saturating_sub(3)..]);
+        if s.buckling < MICHELL_STOP * samples[0].1 {
+            return (est, samples);
+        }
+        next += 0.5 * (est - next);
+    }
+    panic!("no crossing within 30 solves: {samples:?}");
+}
+
+/// Θ at f = 0 of the polynomial Θ(f) through the samples (Θ, f, _) (inverse interpolation).
+fn zero_of(s: &[(f64, f64, f64)]) -> f64 {
+    (0..s.len())
+        .map(|i| {
+            let w: f64 = (0..s.len())
+                .filter(|&j| j != i)
+                .map(|j| s[j].1 / (s[j].1 - s[i].1))
+                .product();
+            s[i].0 * w
+        })
+        .sum()
+}
+
+/// Michell (1889): the planar twisted ring loses stability at Θc = 2π√3·EI/GJ. The ring of
+/// `michell.ron` made slender (r = 1 mm: its finite thickness moves the threshold by
+/// −4.9e-4 at r = 1 cm, about as r²), N = 40 to 320 edges: the discrete Θc approaches Michell's from
+/// below as 1/N² once N ≥ 80 (measured −4.49e-3, −1.26e-3, −3.24e-4, −8.5e-5).
+#[test]
+fn michell_ring_loses_stability_at_its_critical_twist() {
+    let r: f64 = 0.001;
+    let (ei, gj) = (E * PI * r.powi(4) / 4.0, 2.5e9 * PI * r.powi(4) / 2.0);
+    let exact = support::michell_critical_twist(ei, gj);
+    let errs: Vec<f64> = [40, 80, 160, 320]
+        .iter()
+        .map(|&n| {
+            let (theta_c, samples) = michell_critical(r, n, exact);
+            let err = theta_c / exact - 1.0;
+            eprintln!(
+                "Michell, N = {n}: Θc = {theta_c:.9} rad ({err:+.3e}), {} equilibria, last \
+                 eigenvalue {:.3e} of {:.3e} N/m, off-plane {:.2e} .. {:.2e} m",
+                samples.len(),
+                samples.last().unwrap().1,
+                samples[0].1,
+                samples[0].2,
+                samples.last().unwrap().2,
+            );
+            err
+        })
+        .collect();
+    eprintln!("Michell: relative errors {errs:?}");
+    assert!(errs.iter().all(|&e| e < 0.0), "{errs:?}");
+    assert!(errs[3].abs() < 2e-4, "{errs:?}");
+    // Second order in the edge length from N = 80 on (N = 40 is still pre-asymptotic: 3.6).
+    for w in errs[1..].windows(2) {
+        assert!((3.5..4.5).contains(&(w[0] / w[1])), "{errs:?}");
+    }
+}
