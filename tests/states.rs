@@ -7,7 +7,7 @@ fn rodnet() -> Command {
 }
 
 #[test]
-fn a_buckled_strip_has_two_mirror_states_of_equal_energy() {
+fn a_buckled_strip_has_two_mirror_states_and_the_straight_one() {
     let d = std::env::temp_dir().join(format!("rodnet-states-{}", std::process::id()));
     let _ = std::fs::remove_dir_all(&d);
     let out = rodnet()
@@ -27,8 +27,18 @@ fn a_buckled_strip_has_two_mirror_states_of_equal_energy() {
     );
     let s: serde_json::Value =
         serde_json::from_slice(&std::fs::read(d.join("states.json")).unwrap()).unwrap();
-    let states = s["states"].as_array().unwrap();
-    assert_eq!(states.len(), 2, "{s}");
+    let all = s["states"].as_array().unwrap();
+    assert_eq!(all.len(), 3, "{s}");
+    // The third is the strip held straight, found by residual Newton from rest: uniformly
+    // compressed by 10 %, energy ½·EA·ε²·L = 100 J, unstable (many negative eigenvalues).
+    let straight = &all[2];
+    assert_eq!(straight["stable"], false);
+    assert!(straight["index"].as_u64().unwrap() >= 1);
+    let e2 = straight["energy"].as_f64().unwrap();
+    let ea = 1e9 * 0.01 * 0.002;
+    assert!((e2 - 0.5 * ea * 0.01).abs() < 1e-9 * e2, "{e2}");
+    assert_eq!(straight["found_by"], "residual Newton from rest");
+    let states = &all[..2];
     let e: Vec<f64> = states
         .iter()
         .map(|x| x["energy"].as_f64().unwrap())

@@ -2,9 +2,9 @@
 //! deflection from rest is reversed, and it is pushed along its lowest eigenmodes, both ways and
 //! by the amplitudes of [`AMPLITUDES`]; Newton (which leaves saddles along negative curvature)
 //! settles each start; states not seen before are kept and
-//! searched from in turn, breadth first. What it finds are the equilibria that such pushes reach:
-//! local minima, and the scene's own equilibrium whatever its index. It does not search for
-//! saddles between minima.
+//! searched from in turn, breadth first. Pushes reach local minima (and the scene's own
+//! equilibrium whatever its index); unstable equilibria are then sought by Newton on the
+//! residual alone from the rest state and from midpoints between the minima found.
 
 use crate::math::vec::{dist, norm, sub};
 use crate::network::stability::analyse;
@@ -88,9 +88,67 @@ pub fn search(
         }
         next += 1;
     }
+    saddles(net, settings, rest, &mut found, size, max)?;
     net.model.state = found[0].state.clone();
     Ok(found)
 }
+
+/// Unstable equilibria the pushes cannot settle on (Newton leaves them): residual Newton
+/// (`solver::saddle`) from the rest state at the full load (a column held straight, a shell
+/// held flat) and from the midpoint of each pair of stable states found (the barrier between two
+/// minima: the symmetric state between mirror images).
+fn saddles(
+    net: &mut Network,
+    settings: &NewtonSettings,
+    rest: &State,
+    found: &mut Vec<Found>,
+    size: f64,
+    max: usize,
+) -> Result<(), String> {
+    let mut starts = vec![(rest.clone(), "residual Newton from rest".to_string())];
+    let stable: Vec<usize> = (0..found.len()).filter(|&i| found[i].stable).collect();
+    for (a, &i) in stable.iter().enumerate() {
+        for &j in &stable[a + 1..] {
+            let mut mid = found[i].state.clone();
+            let other = &found[j].state;
+            for v in net.model.layout.positions() {
+                mid.q[v] = 0.5 * (mid.q[v] + other.q[v]);
+            }
+            starts.push((mid, format!("residual Newton between states {i} and {j}")));
+        }
+    }
+    for (k, (start, how)) in starts.into_iter().enumerate() {
+        if found.len() >= max {
+            break;
+        }
+        net.model.state = start;
+        net.model.commit();
+        // From rest the loads and motions are followed in steps, each from the last state (a
+        // support moved at once would tear its edge); a midpoint is already near its state.
+        let path: Vec<f64> = match k {
+            0 => (1..=RESIDUAL_STEPS)
+                .map(|i| i as f64 / RESIDUAL_STEPS as f64)
+                .collect(),
+            _ => vec![1.0],
+        };
+        let mut p = crate::network::problem::NetworkProblem::new(&mut net.model);
+        let mut r = Default::default();
+        for lambda in path {
+            r = crate::solver::saddle::converge_any(&mut p, settings, lambda);
+            if !r.converged {
+                break;
+            }
+        }
+        drop(p);
+        if r.converged && !found.iter().any(|f| same(net, &f.state, size)) {
+            found.push(describe(net, r, how)?);
+        }
+    }
+    Ok(())
+}
+
+/// Load steps of the residual-Newton path from rest.
+const RESIDUAL_STEPS: usize = 8;
 
 fn describe(net: &mut Network, report: NewtonReport, found_by: String) -> Result<Found, String> {
     let st = analyse(net, MODES)?;

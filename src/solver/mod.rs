@@ -10,6 +10,7 @@ pub mod ordering;
 pub mod problem;
 pub mod qp;
 mod regularize;
+pub mod saddle;
 pub mod settings;
 pub mod spectrum;
 mod step;

@@ -279,7 +279,7 @@ pub fn compliance<P: NewtonProblem>(
 }
 
 /// A Newton workspace over `p` with its Hessian pattern, factor and unknown scales.
-fn newton_for<P: NewtonProblem>(p: &mut P, ordering: Ordering) -> Newton {
+pub(super) fn newton_for<P: NewtonProblem>(p: &mut P, ordering: Ordering) -> Newton {
     let n = p.num_free();
     let pairs = p.hessian_pattern();
     let (chol, slots) = factorization(p, n, &pairs, ordering);
