@@ -162,6 +162,14 @@ impl SparseCholesky {
         self.values[self.diag[i]]
     }
 
+    /// The shift of the last factorization on each diagonal entry (shift·wᵢ; zeros unshifted).
+    pub fn shift_diagonal(&self) -> Vec<f64> {
+        self.diag
+            .iter()
+            .map(|&p| self.shifted[p] - self.values[p])
+            .collect()
+    }
+
     /// Numeric LLᵀ factorization of A + shift·I.
     pub fn factor(&mut self, shift: f64) -> Result<(), NotPositiveDefinite> {
         self.factor_weighted(shift, &[])

@@ -169,21 +169,22 @@ impl Newton {
         }
         let w = self.weights.clone();
         let mut v = start_block(&self.scales, block.clamp(k, n));
-        let mut hv = vec![0.0; n];
+        let mut scratch = vec![0.0; n];
+        // H v for the start only: after it, v = (H + τW)⁻¹Wx, so Hv = Wx − τWv comes without a
+        // product.
+        let mut hv: Vec<Vec<f64>> = v
+            .iter()
+            .map(|x| {
+                self.chol.multiply(x, &mut scratch);
+                scratch.clone()
+            })
+            .collect();
+        // The factor may be of H + τW (an indefinite H): then Hv = Wx − τWv.
+        let shift = self.chol.shift_diagonal();
         let mut last: Vec<f64> = vec![f64::INFINITY; k];
         let mut pairs: Vec<(f64, Vec<f64>)> = Vec::new();
         for round in 1..=max_rounds {
-            orthonormalize(&mut v, &w);
-            let hvs: Vec<Vec<f64>> = v
-                .iter()
-                .map(|x| {
-                    self.chol.multiply(x, &mut hv);
-                    hv.clone()
-                })
-                .collect();
-            let (vals, vecs) = jacobi(gram(&v, &hvs));
-            pairs = ritz_vectors(&v, &vals, &vecs);
-            pairs.sort_by(|a, b| a.0.total_cmp(&b.0));
+            pairs = self.rayleigh_ritz(&mut v, &mut hv, &w);
             let now: Vec<f64> = pairs.iter().take(k).map(|p| p.0).collect();
             if round > 2 && now.len() == last.len() && settled(&now, &last) {
                 pairs.truncate(k);
@@ -194,10 +195,15 @@ impl Newton {
                 };
             }
             last = now;
-            v = pairs.iter().map(|p| p.1.clone()).collect();
-            for x in &mut v {
-                x.iter_mut().zip(&w).for_each(|(x, w)| *x *= w);
-                self.chol.solve(x);
+            v.clear();
+            hv.clear();
+            for p in &pairs {
+                let wx: Vec<f64> = p.1.iter().zip(&w).map(|(x, w)| x * w).collect();
+                let mut y = wx.clone();
+                self.chol.solve(&mut y);
+                let h: Vec<f64> = (0..n).map(|i| wx[i] - shift[i] * y[i]).collect();
+                v.push(y);
+                hv.push(h);
             }
         }
         pairs.truncate(k);
@@ -207,6 +213,91 @@ impl Newton {
             settled: false,
         }
     }
+
+    /// Ritz pairs of H on span(v), W-orthonormal, ascending, from the small generalized
+    /// problem (VᵀHV)c = λ(VᵀWV)c; where VᵀWV is too ill-conditioned to factor, v is
+    /// orthonormalized first (and Hv recomputed).
+    fn rayleigh_ritz(
+        &mut self,
+        v: &mut Vec<Vec<f64>>,
+        hv: &mut Vec<Vec<f64>>,
+        w: &[f64],
+    ) -> Vec<(f64, Vec<f64>)> {
+        let wv: Vec<Vec<f64>> = v
+            .iter()
+            .map(|x| x.iter().zip(w).map(|(a, b)| a * b).collect())
+            .collect();
+        let mut pairs = match generalized(gram(v, &wv), gram(v, hv)) {
+            Ok((vals, coef)) => ritz_vectors(v, &vals, &coef),
+            Err(_) => {
+                orthonormalize(v, w);
+                let mut scratch = vec![0.0; w.len()];
+                *hv = v
+                    .iter()
+                    .map(|x| {
+                        self.chol.multiply(x, &mut scratch);
+                        scratch.clone()
+                    })
+                    .collect();
+                let (vals, vecs) = jacobi(gram(v, hv));
+                ritz_vectors(v, &vals, &vecs)
+            }
+        };
+        pairs.sort_by(|a, b| a.0.total_cmp(&b.0));
+        pairs
+    }
+}
+
+/// The small generalized problem B y = μ A y, A positive definite: μ and the A-orthonormal y
+/// (columns), through A = LLᵀ and the symmetric L⁻¹BL⁻ᵀ.
+pub(super) fn generalized(
+    a: Vec<Vec<f64>>,
+    b: Vec<Vec<f64>>,
+) -> Result<(Vec<f64>, Vec<Vec<f64>>), String> {
+    let m = a.len();
+    let mut l = vec![vec![0.0; m]; m];
+    for j in 0..m {
+        let d = a[j][j] - (0..j).map(|t| l[j][t] * l[j][t]).sum::<f64>();
+        if d.is_nan() || d <= 0.0 {
+            return Err("the stiffness at the start is not positive on the search space".into());
+        }
+        l[j][j] = d.sqrt();
+        for i in j + 1..m {
+            l[i][j] = (a[i][j] - (0..j).map(|t| l[i][t] * l[j][t]).sum::<f64>()) / l[j][j];
+        }
+    }
+    // C = L⁻¹ B L⁻ᵀ: solve L Z = B, then C = L⁻¹ Zᵀ (Z is L⁻¹B, and (L⁻¹B)L⁻ᵀ = (L⁻¹(L⁻¹B)ᵀ)ᵀ).
+    let lsolve = |col: Vec<f64>| -> Vec<f64> {
+        let mut y = col;
+        for i in 0..m {
+            let s: f64 = (0..i).map(|t| l[i][t] * y[t]).sum();
+            y[i] = (y[i] - s) / l[i][i];
+        }
+        y
+    };
+    let z: Vec<Vec<f64>> = (0..m)
+        .map(|j| lsolve((0..m).map(|i| b[i][j]).collect()))
+        .collect(); // z[j] = column j of L⁻¹B
+    let c: Vec<Vec<f64>> = (0..m)
+        .map(|i| lsolve((0..m).map(|j| z[j][i]).collect()))
+        .collect(); // c[i] = column i of L⁻¹ (L⁻¹B)ᵀ
+    let c: Vec<Vec<f64>> = (0..m)
+        .map(|i| (0..m).map(|j| 0.5 * (c[i][j] + c[j][i])).collect())
+        .collect();
+    let (mu, q) = jacobi(c);
+    // y = L⁻ᵀ q, column by column (back substitution).
+    let mut y = vec![vec![0.0; m]; m];
+    for col in 0..m {
+        let mut x: Vec<f64> = (0..m).map(|r| q[r][col]).collect();
+        for i in (0..m).rev() {
+            let s: f64 = (i + 1..m).map(|t| l[t][i] * x[t]).sum();
+            x[i] = (x[i] - s) / l[i][i];
+        }
+        for r in 0..m {
+            y[r][col] = x[r];
+        }
+    }
+    Ok((mu, y))
 }
 
 /// The result of `Newton::subspace`.
@@ -229,15 +320,19 @@ pub(super) fn start_block(scales: &[f64], m: usize) -> Vec<Vec<f64>> {
         .collect()
 }
 
-/// The small symmetric matrix [xᵢ · yⱼ] (symmetrized: the products are symmetric up to
-/// round-off).
+/// The small symmetric matrix [xᵢ · yⱼ] for y = Ax, A symmetric: symmetric up to round-off,
+/// so each pair is computed once (i ≤ j) and mirrored.
 pub(super) fn gram(x: &[Vec<f64>], y: &[Vec<f64>]) -> Vec<Vec<f64>> {
-    let g: Vec<Vec<f64>> = (0..x.len())
-        .map(|i| (0..y.len()).map(|j| dot(&x[i], &y[j])).collect())
-        .collect();
-    (0..g.len())
-        .map(|i| (0..g.len()).map(|j| 0.5 * (g[i][j] + g[j][i])).collect())
-        .collect()
+    let m = x.len();
+    let mut g = vec![vec![0.0; m]; m];
+    for i in 0..m {
+        for j in i..m {
+            let v = dot(&x[i], &y[j]);
+            g[i][j] = v;
+            g[j][i] = v;
+        }
+    }
+    g
 }
 
 /// The Ritz vectors Σᵣ x_r c_{r,j} for each column j of `coef`, with their values.

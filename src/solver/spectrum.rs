@@ -7,7 +7,7 @@
 //! and gridshells), which a block resolves without reorthogonalization or restarts; the
 //! price is a few more solves per converged pair (docs/stability.md).
 
-use super::modes::{gram, jacobi, orthonormalize, ritz_vectors, start_block, wdot};
+use super::modes::{generalized, gram, orthonormalize, ritz_vectors, start_block, wdot};
 use super::newton::Newton;
 use super::ordering::factorization;
 use super::problem::NewtonProblem;
@@ -290,53 +290,4 @@ pub(super) fn newton_for<P: NewtonProblem>(p: &mut P, ordering: Ordering) -> New
         *w = 1.0 / (s * s);
     }
     nt
-}
-
-/// The small generalized problem B y = μ A y, A positive definite: μ and the A-orthonormal y
-/// (columns), through A = LLᵀ and the symmetric L⁻¹BL⁻ᵀ.
-fn generalized(a: Vec<Vec<f64>>, b: Vec<Vec<f64>>) -> Result<(Vec<f64>, Vec<Vec<f64>>), String> {
-    let m = a.len();
-    let mut l = vec![vec![0.0; m]; m];
-    for j in 0..m {
-        let d = a[j][j] - (0..j).map(|t| l[j][t] * l[j][t]).sum::<f64>();
-        if d.is_nan() || d <= 0.0 {
-            return Err("the stiffness at the start is not positive on the search space".into());
-        }
-        l[j][j] = d.sqrt();
-        for i in j + 1..m {
-            l[i][j] = (a[i][j] - (0..j).map(|t| l[i][t] * l[j][t]).sum::<f64>()) / l[j][j];
-        }
-    }
-    // C = L⁻¹ B L⁻ᵀ: solve L Z = B, then C = L⁻¹ Zᵀ (Z is L⁻¹B, and (L⁻¹B)L⁻ᵀ = (L⁻¹(L⁻¹B)ᵀ)ᵀ).
-    let lsolve = |col: Vec<f64>| -> Vec<f64> {
-        let mut y = col;
-        for i in 0..m {
-            let s: f64 = (0..i).map(|t| l[i][t] * y[t]).sum();
-            y[i] = (y[i] - s) / l[i][i];
-        }
-        y
-    };
-    let z: Vec<Vec<f64>> = (0..m)
-        .map(|j| lsolve((0..m).map(|i| b[i][j]).collect()))
-        .collect(); // z[j] = column j of L⁻¹B
-    let c: Vec<Vec<f64>> = (0..m)
-        .map(|i| lsolve((0..m).map(|j| z[j][i]).collect()))
-        .collect(); // c[i] = column i of L⁻¹ (L⁻¹B)ᵀ
-    let c: Vec<Vec<f64>> = (0..m)
-        .map(|i| (0..m).map(|j| 0.5 * (c[i][j] + c[j][i])).collect())
-        .collect();
-    let (mu, q) = jacobi(c);
-    // y = L⁻ᵀ q, column by column (back substitution).
-    let mut y = vec![vec![0.0; m]; m];
-    for col in 0..m {
-        let mut x: Vec<f64> = (0..m).map(|r| q[r][col]).collect();
-        for i in (0..m).rev() {
-            let s: f64 = (i + 1..m).map(|t| l[t][i] * x[t]).sum();
-            x[i] = (x[i] - s) / l[i][i];
-        }
-        for r in 0..m {
-            y[r][col] = x[r];
-        }
-    }
-    Ok((mu, y))
 }
