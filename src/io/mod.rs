@@ -13,3 +13,4 @@ pub mod stability;
 pub mod states;
 pub mod text;
 pub mod vtk;
+pub mod xy_plot;
