@@ -60,6 +60,13 @@ fn a_buckled_strip_has_two_mirror_states_and_the_straight_one() {
         assert!(st["lowest_eigenvalue"].as_f64().unwrap() > 0.0);
     }
     assert_eq!(states[0]["found_by"], "scene");
+    // The second is a copy of the first under a symmetry (its mirror image); the straight one
+    // is no one's.
+    assert_eq!(states[1]["symmetric_to"], 0);
+    // Up and down: the crown moves by twice its height.
+    let d1 = states[1]["distance_to_first"].as_f64().unwrap();
+    assert!((d1 - 2.0 * z0).abs() < 1e-6 * z0, "{d1} {z0}");
+    assert!(states[0].get("symmetric_to").is_none() && straight.get("symmetric_to").is_none());
     // --max bounds the search.
     let out = rodnet()
         .args([

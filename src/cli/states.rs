@@ -75,10 +75,12 @@ pub fn run(a: &StatesArgs) -> i32 {
             index: f.index,
             index_at_least: f.index_at_least,
             lowest_eigenvalue: f.lowest_eigenvalue,
+            distance_to_first: f.distance_to_first,
             converged: results.converged,
             iterations: results.iterations,
             found_by: f.found_by.clone(),
             results: name,
+            symmetric_to: f.symmetric_to,
         });
     }
     let json = StatesJson { states };

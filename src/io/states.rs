@@ -14,12 +14,17 @@ pub struct StateJson {
     pub index_at_least: bool,
     /// The lowest eigenvalue, N/m.
     pub lowest_eigenvalue: f64,
+    /// Largest node distance from state 0 (the scene's own), m.
+    pub distance_to_first: f64,
     pub converged: bool,
     pub iterations: usize,
     /// "scene" (the scene's own solve) or how it was reached: "state k, mode j, ±amplitude".
     pub found_by: String,
     /// Its results JSON, beside states.json.
     pub results: String,
+    /// The earlier state this one is a copy of under a symmetry (a reflection or turn of it).
+    #[serde(skip_serializing_if = "Option::is_none")]
+    pub symmetric_to: Option<usize>,
 }
 
 #[derive(Debug, Clone, Serialize)]

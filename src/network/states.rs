@@ -28,6 +28,11 @@ pub struct Found {
     pub found_by: String,
     /// Its lowest modes (over the free unknowns), the directions searched from it.
     pub modes: Vec<Vec<f64>>,
+    /// An earlier state this one is a copy of under a symmetry (a reflection or turn: every
+    /// node at the same distances from the others, to 1e-6 of the structure's size).
+    pub symmetric_to: Option<usize>,
+    /// Largest node distance from the first state (the scene's own), m.
+    pub distance_to_first: f64,
 }
 
 /// Eigenmodes pushed along from each state.
@@ -89,6 +94,19 @@ pub fn search(
         next += 1;
     }
     saddles(net, settings, rest, &mut found, size, max)?;
+    for j in 1..found.len() {
+        found[j].symmetric_to =
+            (0..j).find(|&i| congruent(net, &found[i].state, &found[j].state, size));
+        let l = &net.model.layout;
+        found[j].distance_to_first = (0..l.n_nodes())
+            .map(|n| {
+                dist(
+                    &l.position(&found[0].state.q, n),
+                    &l.position(&found[j].state.q, n),
+                )
+            })
+            .fold(0.0, f64::max);
+    }
     net.model.state = found[0].state.clone();
     Ok(found)
 }
@@ -161,6 +179,24 @@ fn describe(net: &mut Network, report: NewtonReport, found_by: String) -> Result
         lowest_eigenvalue: st.eigenvalues.first().copied().unwrap_or(f64::NAN),
         found_by,
         modes: st.modes,
+        symmetric_to: None,
+        distance_to_first: 0.0,
+    })
+}
+
+/// Whether `a` and `b` are one shape placed differently (node by node: a reflection or turn of
+/// it): every node's distances to eight nodes spread over the numbering agree to 1e-6 of the
+/// structure's size. Distinct states of one structure differ in some such distance.
+fn congruent(net: &Network, a: &State, b: &State, size: f64) -> bool {
+    let l = &net.model.layout;
+    let n = l.n_nodes();
+    let anchors: Vec<usize> = (0..8).map(|k| k * n / 8).collect();
+    (0..n).all(|i| {
+        anchors.iter().all(|&m| {
+            let da = dist(&l.position(&a.q, i), &l.position(&a.q, m));
+            let db = dist(&l.position(&b.q, i), &l.position(&b.q, m));
+            (da - db).abs() <= 1e-6 * size
+        })
     })
 }
 
