@@ -216,7 +216,6 @@ fn results_of_another_scene_are_refused_before_solving() {
 /// from its own result without a single Newton iteration.
 #[test]
 fn a_clamped_arch_restarts_from_its_own_result() {
-    use rodnet::network::initial::RodState;
     use rodnet::pipeline::{settings_of, solve_scene, solve_scene_from};
     let path = concat!(
         env!("CARGO_MANIFEST_DIR"),
@@ -228,16 +227,7 @@ fn a_clamped_arch_restarts_from_its_own_result() {
         .stage(0);
     let first = solve_scene(&sc, &settings_of(&sc)).unwrap();
     assert!(first.results.converged);
-    let rods: Vec<RodState> = first
-        .results
-        .rods
-        .iter()
-        .map(|r| RodState {
-            name: r.name.clone(),
-            points: r.points.clone(),
-            twist: r.twist.clone(),
-        })
-        .collect();
+    let rods = rodnet::io::initial::of_results(&first.results);
     let again = solve_scene_from(&sc, &settings_of(&sc), &rods).unwrap_or_else(|_| panic!());
     assert!(again.results.converged);
     assert_eq!(

@@ -398,16 +398,7 @@ fn michell_state(r: f64, n: usize, theta: f64, from: Option<&[RodState]>) -> Opt
         .filter(|&i| i != neutral)
         .map(|i| ev[i])
         .fold(f64::INFINITY, f64::min);
-    let rods = sol
-        .results
-        .rods
-        .iter()
-        .map(|r| RodState {
-            name: r.name.clone(),
-            points: r.points.clone(),
-            twist: r.twist.clone(),
-        })
-        .collect();
+    let rods = rodnet::io::initial::of_results(&sol.results);
     Some(Planar {
         buckling,
         neutral: ev[neutral],

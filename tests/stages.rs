@@ -7,7 +7,6 @@
 use std::path::PathBuf;
 use std::process::Command;
 
-use rodnet::network::initial::RodState;
 use rodnet::pipeline::{settings_of, solve_scene, solve_scene_from, solve_stages, Solution};
 use rodnet::scene::{parse, Scene};
 
@@ -112,16 +111,7 @@ fn an_erected_arch_takes_its_crown_load() {
     let base = s.results.stages[0].clone();
     assert!(base.converged && s.results.solver.stable);
     let all = sc.all_stages();
-    let rods: Vec<RodState> = s
-        .results
-        .rods
-        .iter()
-        .map(|r| RodState {
-            name: r.name.clone(),
-            points: r.points.clone(),
-            twist: r.twist.clone(),
-        })
-        .collect();
+    let rods = rodnet::io::initial::of_results(&s.results);
     let again = solve_scene_from(&all, &settings_of(&all), &rods).unwrap_or_else(|_| panic!());
     assert!(again.results.converged);
     assert!(

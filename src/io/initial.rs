@@ -32,3 +32,15 @@ pub fn parse(text: &str) -> Result<Vec<RodState>, String> {
         })
         .collect())
 }
+
+/// The rod states of results in memory (a solve's, a sweep's), as `--initial` reads them.
+pub fn of_results(r: &crate::io::results::Results) -> Vec<RodState> {
+    r.rods
+        .iter()
+        .map(|r| RodState {
+            name: r.name.clone(),
+            points: r.points.clone(),
+            twist: r.twist.clone(),
+        })
+        .collect()
+}
