@@ -108,8 +108,8 @@ fn write(
         let png = curve_plot::curve(
             points,
             limits,
-            ("DEPTH, M", "FORCE, N"),
-            "INDENTATION: FORCE AGAINST DEPTH",
+            ("depth (m)", "force (N)"),
+            "Indentation: force against depth",
             (900, 600),
         )?;
         files.push((p, png));

@@ -1,6 +1,7 @@
 //! Several named series on linear or logarithmic axes as a PNG, with a legend above the axes
-//! (the indentation study's K against n and r/R, its force–depth curves), drawn like
-//! [`crate::io::curve_plot`]: plotters' bitmap backend, the embedded font, our PNG encoder.
+//! (the indentation study's K against n and r/R, its force–depth curves; `rodnet indent
+//! --plot` through [`crate::io::curve_plot`]): plotters' bitmap backend, the embedded font,
+//! our PNG encoder.
 
 use plotters::prelude::*;
 
