@@ -8,9 +8,11 @@
 use std::collections::BTreeMap;
 
 use crate::energy::spring::Spring;
-use crate::math::vec::{any_perpendicular, cross, dot, norm, normalize, scalef, sub};
+use crate::math::vec::{any_perpendicular, cross, norm, normalize, scalef};
 use crate::network::equilibrium::ConstraintForces;
-use crate::network::roller::{holding_spring, holding_stiffness, Rollers, SlantedRoller};
+use crate::network::roller::{
+    holding_spring, holding_stiffness, orthonormal, Rollers, SlantedRoller,
+};
 use crate::network::Network;
 
 /// A copy of `net` without its contact and bounds, its active constraints held. Returns the
@@ -86,19 +88,4 @@ fn surface_curvature(
         axes: [n, a, b],
         anchor: [x, x],
     }
-}
-
-/// Gram–Schmidt, dropping directions that repeat earlier ones.
-fn orthonormal(ns: &[[f64; 3]]) -> Vec<[f64; 3]> {
-    let mut basis: Vec<[f64; 3]> = Vec::new();
-    for n in ns {
-        let mut u = normalize(*n);
-        for b in &basis {
-            u = sub(u, scalef(*b, dot(u, *b)));
-        }
-        if dot(u, u) > 1e-12 && basis.len() < 3 {
-            basis.push(normalize(u));
-        }
-    }
-    basis
 }

@@ -39,9 +39,6 @@ pub struct SupportInfo {
     /// A rotational elastic support: its index in `Terms::rotational_springs` (its reaction
     /// moment is the spring's moment); `frame` is then the frame it turns with.
     pub rotational: Option<usize>,
-    /// A Roller with a general normal (its index among the scene's slanted-roller nodes): its
-    /// node stays free, and its reaction is the gradient's part along the node's normals.
-    pub roller: Option<usize>,
 }
 
 /// The node held in place to remove the rigid translations of an unsupported structure.

@@ -10,7 +10,7 @@
 
 use crate::energy::registry::Terms;
 use crate::energy::spring::Spring;
-use crate::math::vec::{any_perpendicular, cross, normalize};
+use crate::math::vec::{any_perpendicular, cross, dot, normalize, scalef, sub};
 use crate::math::{D1, HD};
 
 /// Marks variables that belong to no slanted roller.
@@ -169,6 +169,22 @@ impl Rollers {
 
 fn apply(p: &[[f64; 3]; 3], x: [f64; 3]) -> [f64; 3] {
     std::array::from_fn(|i| p[i][0] * x[0] + p[i][1] * x[1] + p[i][2] * x[2])
+}
+
+/// Orthonormal directions spanning `normals` (Gram–Schmidt), dropping those the earlier ones
+/// already span: parallel normals through one node are one plane.
+pub fn orthonormal(normals: &[[f64; 3]]) -> Vec<[f64; 3]> {
+    let mut basis: Vec<[f64; 3]> = Vec::new();
+    for n in normals {
+        let mut u = normalize(*n);
+        for b in &basis {
+            u = sub(u, scalef(*b, dot(u, *b)));
+        }
+        if dot(u, u) > 1e-12 && basis.len() < 3 {
+            basis.push(normalize(u));
+        }
+    }
+    basis
 }
 
 /// The stiffness that holds slanted planes: the network's stiffest edge, EA/l (N/m). Stiff

@@ -20,7 +20,12 @@ pub fn start_from(prev: &Network, next: &mut Network) -> Result<(), String> {
         place(next, &rod_states(prev))?;
     }
     let m = &mut next.model;
-    let node = |l: &PointLoad| l.vars[0] / 3;
+    let node = |l: &PointLoad| {
+        prev.model
+            .layout
+            .node_of(l.vars[0])
+            .expect("a point load acts on a node")
+    };
     let mut before: BTreeMap<usize, [f64; 3]> = prev
         .model
         .terms

@@ -150,13 +150,7 @@ fn saddles(
             _ => vec![1.0],
         };
         let mut p = crate::network::problem::NetworkProblem::new(&mut net.model);
-        let mut r = Default::default();
-        for lambda in path {
-            r = crate::solver::saddle::converge_any(&mut p, settings, lambda);
-            if !r.converged {
-                break;
-            }
-        }
+        let r = crate::solver::saddle::converge_any(&mut p, settings, &path);
         drop(p);
         if r.converged && !found.iter().any(|f| same(net, &f.state, size)) {
             found.push(describe(net, r, how)?);

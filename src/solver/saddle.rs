@@ -4,6 +4,7 @@
 //! It converges to the equilibrium nearest its start whatever its stability; a symmetric start
 //! (a straight column) keeps its symmetry, where the energy-decreasing iteration would leave it.
 
+use super::newton::Newton;
 use super::problem::NewtonProblem;
 use super::settings::{NewtonReport, NewtonSettings};
 use super::spectrum::newton_for;
@@ -15,15 +16,40 @@ const MAX_ITERATIONS: usize = 60;
 const DECREASE: f64 = 1e-4;
 const MIN_STEP: f64 = 1e-10;
 
-/// Converges from the problem's current state at continuation parameter `lambda`.
+/// Converges from the problem's current state at each continuation parameter of `path` in
+/// turn, each from the last (one workspace, one symbolic analysis, for the whole path); the
+/// report is the last solve's (or the first that did not converge), with the work of all.
 pub fn converge_any<P: NewtonProblem>(
     p: &mut P,
+    settings: &NewtonSettings,
+    path: &[f64],
+) -> NewtonReport {
+    let mut nt = newton_for(p, settings.ordering);
+    let mut report = NewtonReport::default();
+    let (mut iterations, mut factorizations, mut seconds) = (0, 0, 0.0);
+    for &lambda in path {
+        report = converge_at(p, &mut nt, settings, lambda);
+        iterations += report.iterations;
+        factorizations += report.factorizations;
+        seconds += report.seconds;
+        if !report.converged {
+            break;
+        }
+    }
+    report.iterations = iterations;
+    report.factorizations = factorizations;
+    report.seconds = seconds;
+    report
+}
+
+fn converge_at<P: NewtonProblem>(
+    p: &mut P,
+    nt: &mut Newton,
     settings: &NewtonSettings,
     lambda: f64,
 ) -> NewtonReport {
     let t0 = std::time::Instant::now();
     p.set_continuation(lambda);
-    let mut nt = newton_for(p, settings.ordering);
     let mut report = NewtonReport {
         tolerance: settings.tolerance,
         ..Default::default()

@@ -41,7 +41,7 @@ pub fn join(rest: &Rest) -> Result<Joined, FieldError> {
         .filter(|s| s.kind == SupportKind::Clamp)
         .map(|s| rest.site(&s.rod, s.vertex))
         .collect();
-    let torque_sites: HashSet<RodSite> = frame_sites_in_order(rest).into_iter().collect();
+    let frame_sites: HashSet<RodSite> = frame_sites_in_order(rest).into_iter().collect();
     let mut joined = Joined {
         table: PortTable::default(),
         splices: Vec::new(),
@@ -49,7 +49,7 @@ pub fn join(rest: &Rest) -> Result<Joined, FieldError> {
         joint_nodes: Vec::new(),
     };
     for (ji, j) in scene.joints.iter().enumerate() {
-        add_joint(rest, &mut joined, ji, j, &clamped, &torque_sites)?;
+        add_joint(rest, &mut joined, ji, j, &clamped, &frame_sites)?;
     }
     let table = &mut joined.table;
     rigid_corners(rest, table);
@@ -100,7 +100,7 @@ fn add_joint(
     ji: usize,
     j: &Joint,
     clamped: &HashSet<RodSite>,
-    torque_sites: &HashSet<RodSite>,
+    frame_sites: &HashSet<RodSite>,
 ) -> Result<(), FieldError> {
     let mut sites: Vec<Site> =
         j.at.iter()
@@ -135,9 +135,7 @@ fn add_joint(
     let mut shared = true;
     match &j.kind {
         JointKind::Rigid => {
-            let loaded = sites
-                .iter()
-                .any(|s| torque_sites.contains(&(s.rod, s.node)));
+            let loaded = sites.iter().any(|s| frame_sites.contains(&(s.rod, s.node)));
             let turning = {
                 let (a, b) = (sites[0].rest[2], sites[sites.len() - 1].rest[2]);
                 // Rod-end frames point along their rod; a straight continuation has the two

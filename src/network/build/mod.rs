@@ -138,8 +138,7 @@ fn slanted_rollers(
     fixed: &[bool],
     terms: &mut crate::energy::registry::Terms,
 ) -> Result<Vec<crate::network::roller::SlantedRoller>, FieldError> {
-    use crate::math::vec::{dot, normalize, scalef, sub};
-    use crate::network::roller::{holding_spring, holding_stiffness, SlantedRoller};
+    use crate::network::roller::{holding_spring, holding_stiffness, orthonormal, SlantedRoller};
     let stiffest = holding_stiffness(terms);
     let mut out = Vec::new();
     for (node, normals, through) in slanted {
@@ -147,18 +146,7 @@ fn slanted_rollers(
         if vars.iter().any(|&v| fixed[v]) {
             continue;
         }
-        let mut basis: Vec<[f64; 3]> = Vec::new();
-        for n in normals {
-            let mut u = normalize(*n);
-            for b in &basis {
-                u = sub(u, scalef(*b, dot(u, *b)));
-            }
-            // Parallel normals through one node are one plane (they share its rest position and
-            // `move_to`).
-            if dot(u, u) > 1e-12 {
-                basis.push(normalize(u));
-            }
-        }
+        let basis = orthonormal(normals);
         if basis.len() > 2 {
             return Err(FieldError::global(
                 "supports",

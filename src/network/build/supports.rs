@@ -92,33 +92,31 @@ pub fn apply(
                 frame: rotational.map(|(_, f)| f),
                 spring,
                 rotational: rotational.map(|(k, _)| k),
-                roller: None,
             });
             continue;
         }
         // A node with a slanted Roller keeps its coordinates: all its Rollers hold it by
         // projection (`network/roller.rs`).
-        let slanted_index = match s.kind {
+        let slanted = match s.kind {
             SupportKind::Roller { normal } if slanted_nodes.contains(&node) => {
                 let rest_pos = net.rest_pos[node];
-                let at = [rest_pos, s.move_to.unwrap_or(rest_pos)];
-                let k = match out.slanted.iter().position(|e| e.0 == node) {
-                    Some(k) => k,
-                    None => {
-                        out.slanted.push((node, Vec::new(), at));
-                        out.slanted.len() - 1
-                    }
-                };
-                out.slanted[k].1.push(normal);
-                Some(k)
+                match out.slanted.iter_mut().find(|e| e.0 == node) {
+                    Some(e) => e.1.push(normal),
+                    None => out.slanted.push((
+                        node,
+                        vec![normal],
+                        [rest_pos, s.move_to.unwrap_or(rest_pos)],
+                    )),
+                }
+                true
             }
-            _ => None,
+            _ => false,
         };
         // A Roller holds (and moves) one coordinate; Pins and Clamps all three.
-        let held: Vec<usize> = match (s.kind.roller_axis(), slanted_index) {
-            (_, Some(_)) => vec![],
-            (Some(k), None) => vec![k],
-            (None, None) => vec![0, 1, 2],
+        let held: Vec<usize> = match (s.kind.roller_axis(), slanted) {
+            (_, true) => vec![],
+            (Some(k), false) => vec![k],
+            (None, false) => vec![0, 1, 2],
         };
         for &k in &held {
             fixed[layout.node_coord(node, k)] = true;
@@ -181,7 +179,6 @@ pub fn apply(
             frame,
             spring: None,
             rotational: None,
-            roller: slanted_index,
         });
     }
     Ok(out)
