@@ -155,3 +155,28 @@ fn an_inclined_prop_takes_the_normal_part_of_the_load() {
         assert!((r[k] - p * a.cos() * n[k]).abs() < 1e-6 * p, "{r:?}");
     }
 }
+
+/// A third independent normal on one node would hold it entirely: refused at that Roller, with
+/// its line; a repeated plane (parallel normals) is one plane and accepted.
+#[test]
+fn three_independent_roller_normals_are_refused_at_the_third() {
+    let text = |third: &str| {
+        format!(
+            "Scene(materials: {{\"m\": Material(young_modulus: 1e9, poisson_ratio: 0.3, \
+             section: Circle(radius: 0.01))}},
+ rods: [Rod(name: \"r\", material: \"m\", points: [(0,0,0), (1,0,0)])],
+ supports: [Support(rod: \"r\", vertex: 0, kind: Clamp),
+  Support(rod: \"r\", vertex: 1, kind: Roller(normal: (1, 1, 0))),
+  Support(rod: \"r\", vertex: 1, kind: Roller(normal: (0, 1, 1))),
+  Support(rod: \"r\", vertex: 1, kind: Roller(normal: {third}))])"
+        )
+    };
+    let e = parse("r.ron", &text("(1, 0, 1)"))
+        .expect_err("refused")
+        .to_string();
+    assert!(
+        e.contains("r.ron:6:") && e.contains("supports[3].kind"),
+        "{e}"
+    );
+    parse("r.ron", &text("(2, 2, 0)")).unwrap();
+}

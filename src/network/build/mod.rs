@@ -60,7 +60,7 @@ pub fn build(scene: &Scene) -> Result<Network, FieldError> {
         || supported.rotational.iter().any(|s| s.rotate_by != [0.0; 3]);
     terms.springs = supported.springs;
     terms.rotational_springs = supported.rotational;
-    let rollers = slanted_rollers(&supported.slanted, &layout, &fixed, &mut terms)?;
+    let rollers = slanted_rollers(&supported.slanted, &layout, &fixed, &mut terms);
     let force_scale = loads::apply(
         scene,
         &rest,
@@ -137,7 +137,7 @@ fn slanted_rollers(
     layout: &DofLayout,
     fixed: &[bool],
     terms: &mut crate::energy::registry::Terms,
-) -> Result<Vec<crate::network::roller::SlantedRoller>, FieldError> {
+) -> Vec<crate::network::roller::SlantedRoller> {
     use crate::network::roller::{holding_spring, holding_stiffness, orthonormal, SlantedRoller};
     let stiffest = holding_stiffness(terms);
     let mut out = Vec::new();
@@ -147,19 +147,11 @@ fn slanted_rollers(
             continue;
         }
         let basis = orthonormal(normals);
-        if basis.len() > 2 {
-            return Err(FieldError::global(
-                "supports",
-                "kind",
-                format!(
-                    "Rollers with three independent normals hold node {node} in place; use a Pin \
-                     (with its `move_to`) instead"
-                ),
-            ));
-        }
+        // `scene::validate` refuses a third independent normal on one node.
+        debug_assert!(basis.len() <= 2);
         let roller = SlantedRoller::new(*node, vars, basis, *through);
         terms.roller_normals.push(holding_spring(&roller, stiffest));
         out.push(roller);
     }
-    Ok(out)
+    out
 }

@@ -19,6 +19,8 @@ pub(super) fn supports(s: &Scene, rods: &RodIndex, in_joint: &InJoint) -> Result
         None => NodeKey::Vertex(rod.to_string(), v),
     };
     let mut motion: HashMap<NodeKey, (usize, Option<[f64; 3]>)> = HashMap::new();
+    // Orthonormal directions each node's Rollers hold, to refuse a third independent one.
+    let mut held: HashMap<NodeKey, Vec<[f64; 3]>> = HashMap::new();
     for (i, sp) in s.supports.iter().enumerate() {
         let err = |f: &str, msg: String| Err(FieldError::new("supports", i, f, msg));
         if let Err((f, m)) = rods.rod_vertex(&sp.rod, sp.vertex) {
@@ -66,6 +68,16 @@ pub(super) fn supports(s: &Scene, rods: &RodIndex, in_joint: &InJoint) -> Result
                     ),
                 );
             }
+            let basis = held.entry(node_of(&sp.rod, sp.vertex)).or_default();
+            if adds_direction(basis, normal) && basis.len() > 2 {
+                return err(
+                    "kind",
+                    "this Roller's normal and those of two earlier Rollers on this node are \
+                     independent: together they hold the node in place; use a Pin (with its \
+                     `move_to`) instead"
+                        .into(),
+                );
+            }
         }
         let node = node_of(&sp.rod, sp.vertex);
         let Some(&(k, prev)) = motion.get(&node) else {
@@ -86,6 +98,21 @@ pub(super) fn supports(s: &Scene, rods: &RodIndex, in_joint: &InJoint) -> Result
         }
     }
     Ok(())
+}
+
+/// Adds `n` to the orthonormal `basis` (Gram–Schmidt) unless the basis already spans it, as
+/// parallel normals through one node (one plane) do; whether it did.
+fn adds_direction(basis: &mut Vec<[f64; 3]>, n: [f64; 3]) -> bool {
+    use crate::math::vec::{dot, normalize, scalef, sub};
+    let mut u = normalize(n);
+    for b in basis.iter() {
+        u = sub(u, scalef(*b, dot(u, *b)));
+    }
+    let new = dot(u, u) > 1e-12;
+    if new {
+        basis.push(normalize(u));
+    }
+    new
 }
 
 /// Checks a Spring's stiffnesses and axes; the error names the field of `kind` at fault.
