@@ -122,6 +122,7 @@ pub(super) fn follow<P: NewtonProblem>(
             let lim = Limits {
                 tolerance: s.tolerance,
                 cap: budget.saturating_sub(st.report.iterations).max(1),
+                extended_cap: budget.saturating_sub(st.report.iterations).max(1),
                 deadline,
                 retry_on_damping: false,
             };

@@ -91,7 +91,7 @@ impl Path {
         if trivial {
             // Nothing moves along the path (a form-finding step with fixed supports and no
             // loads): the solve is the start's equilibration, to the full tolerance.
-            let lim = self.limits(s.tolerance, s.max_iterations, false);
+            let lim = self.limits(s.tolerance, (s.max_iterations, s.max_iterations), false);
             let outcome = st.iterate(p, s, &lim, self.steps);
             st.report.substeps = 1;
             st.report.step_iterations = vec![st.report.iterations];
@@ -146,7 +146,7 @@ impl Path {
         }
         let lim = self.limits(
             s.tolerance.max(INTERMEDIATE_TOLERANCE),
-            s.max_iterations,
+            (s.max_iterations, s.max_iterations),
             false,
         );
         let saved = p.snapshot();
@@ -170,10 +170,13 @@ impl Path {
         }
     }
 
-    fn limits(&self, tolerance: f64, cap: usize, retry_on_damping: bool) -> Limits {
+    /// An attempt that may be retried (`retry_on_damping`) may also go on past `cap` while it
+    /// converges, up to `extended_cap`; a last chance has its whole budget as `cap`.
+    fn limits(&self, tolerance: f64, caps: (usize, usize), retry_on_damping: bool) -> Limits {
         Limits {
             tolerance,
-            cap,
+            cap: caps.0,
+            extended_cap: caps.1,
             deadline: self.deadline,
             retry_on_damping,
         }
@@ -217,17 +220,17 @@ impl Path {
                 .max_iterations
                 .saturating_sub(st.report.iterations - its_before);
             let last_chance = minimal || remaining <= ATTEMPT_CAP;
-            let cap = if minimal {
-                remaining
+            let caps = if last_chance {
+                (remaining, remaining)
             } else {
-                ATTEMPT_CAP.min(remaining)
+                (ATTEMPT_CAP, (2 * ATTEMPT_CAP).min(remaining))
             };
             let tolerance = if next == 1.0 {
                 s.tolerance
             } else {
                 s.tolerance.max(INTERMEDIATE_TOLERANCE)
             };
-            let lim = self.limits(tolerance, cap, !last_chance);
+            let lim = self.limits(tolerance, caps, !last_chance);
             let before = st.report.iterations;
             match st.iterate(p, s, &lim, k) {
                 o @ (Outcome::Converged | Outcome::AtFloor) => {

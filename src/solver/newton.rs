@@ -30,6 +30,11 @@ const TRUSTED_RESIDUAL: f64 = 1e-4;
 /// it, no floor of a sane problem matters, and measuring costs two gradient evaluations.
 const FLOOR_CHECK: f64 = 1e-2;
 
+/// An attempt at its cap goes on while the quadratic model's remaining decrease (½·gᵀH⁻¹g) is at
+/// most this many times the last iteration's energy decrease: it is converging, and retrying it
+/// with a smaller increment would discard that progress (`Newton::converging`).
+const CONVERGING_ITERATIONS: f64 = 4.0;
+
 /// How Newton iterations at one continuation parameter ended.
 pub(super) enum Outcome {
     /// Residual below the tolerance.
@@ -48,6 +53,8 @@ pub(super) enum Outcome {
 pub(super) struct Limits {
     pub tolerance: f64,
     pub cap: usize,
+    /// Up to this many iterations an attempt that is converging may go past `cap`.
+    pub extended_cap: usize,
     pub deadline: Option<Instant>,
     /// Give up after four damped steps in a row (a sub-step that a smaller increment can
     /// retry more cheaply).
@@ -116,6 +123,7 @@ impl Newton {
         let mut escapes = 0;
         let mut damped = 0;
         let mut last_res = f64::INFINITY;
+        let mut last_energy = f64::INFINITY;
         let mut floor: Option<f64> = None;
         loop {
             let e0 = p.assemble(&mut self.g, Some(&mut self.chol.values));
@@ -192,11 +200,15 @@ impl Newton {
                 // Below the round-off floor Newton may still creep; that is as far as it goes.
                 return Outcome::AtFloor;
             }
-            if it >= lim.cap {
-                return Outcome::Budget(format!(
+            let budget = || {
+                Outcome::Budget(format!(
                     "{it} Newton iterations: relative residual {res:.3e} > tolerance {:.1e}",
                     lim.tolerance
-                ));
+                ))
+            };
+            let at_cap = it >= lim.cap;
+            if at_cap && (it >= lim.extended_cap || self.qp.is_some()) {
+                return budget();
             }
             if lim.deadline.is_some_and(|t| Instant::now() >= t) {
                 return Outcome::Budget(format!(
@@ -217,6 +229,10 @@ impl Newton {
                 self.chol.solve(&mut self.d);
                 self.report.factor_seconds += ts.elapsed().as_secs_f64();
             }
+            if at_cap && !self.converging(e0, last_energy, shift) {
+                return budget();
+            }
+            last_energy = e0;
             let curves = self.corrections(p, shift);
             match self.search(p, e0, shift, res, curves) {
                 Some(alpha) => damped = if alpha < 0.5 { damped + 1 } else { 0 },
@@ -235,6 +251,26 @@ impl Newton {
                 return Outcome::Failed(format!("damped Newton steps (residual {res:.3e})"));
             }
         }
+    }
+
+    /// Whether the attempt is converging: the quadratic model's remaining decrease from the
+    /// energy `e0` along the step in `d`, ½·|gᵀd|, is at most `CONVERGING_ITERATIONS` times
+    /// the last iteration's decrease (from `last_energy`). The model is trusted where the
+    /// shift carries at most a tenth of the step's curvature dᵀ(H + τW)d = −gᵀd; beyond, the
+    /// Hessian is indefinite along the step and the model says nothing of the distance left.
+    fn converging(&self, e0: f64, last_energy: f64, shift: f64) -> bool {
+        let slope: f64 = self.g.iter().zip(&self.d).map(|(a, b)| a * b).sum();
+        let shifted: f64 = shift
+            * self
+                .d
+                .iter()
+                .zip(&self.weights)
+                .map(|(d, w)| w * d * d)
+                .sum::<f64>();
+        let decrease = last_energy - e0;
+        shifted <= -0.1 * slope
+            && decrease > 0.0
+            && -0.5 * slope <= CONVERGING_ITERATIONS * decrease
     }
 
     /// The line search along the step corrected by the first `curves` of `c`, `c2`; accepts
