@@ -83,6 +83,11 @@ pub enum Command {
         /// added to a form-found shell. Falls back to the solve from rest if Newton fails there.
         #[arg(long, value_name = "RESULTS.json")]
         initial: Option<PathBuf>,
+        /// Also solve at twice every rod's subdivision (starting from this solution) and report
+        /// the Richardson extrapolate of the two with the error estimate (results `extrapolation`;
+        /// the other outputs are the finer solve's).
+        #[arg(long, conflicts_with = "initial")]
+        extrapolate: bool,
         /// No progress output.
         #[arg(long)]
         quiet: bool,
@@ -143,6 +148,7 @@ pub fn run(cli: Cli) -> i32 {
             modes,
             modes_obj,
             initial,
+            extrapolate,
             quiet,
             network,
             limits,
@@ -159,6 +165,7 @@ pub fn run(cli: Cli) -> i32 {
                     modes: modes.map(|k| k as usize),
                     modes_obj,
                     initial,
+                    extrapolate,
                 },
                 quiet,
                 &network,

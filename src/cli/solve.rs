@@ -23,6 +23,9 @@ pub(super) struct Outputs {
     /// `--initial`: an earlier results JSON of the same scene to start from (an input, checked
     /// with the outputs so that no output replaces it).
     pub initial: Option<PathBuf>,
+    /// `--extrapolate`: the scene and its doubled subdivision, extrapolated
+    /// (`study::extrapolate`).
+    pub extrapolate: bool,
 }
 
 impl Outputs {
@@ -204,6 +207,12 @@ fn solve_and_write(label: &str, sc: &Scene, source: &Source, outputs: Outputs, q
     settings.progress = Some(tracker.hook());
     let mut stage_error = None;
     let result = match &outputs.initial {
+        None if outputs.extrapolate => {
+            crate::study::extrapolate::solve(sc, &settings).map_err(|e| match e {
+                job::JobError::Scene(e) => source.describe(&e),
+                job::JobError::Refused(m) => format!("--extrapolate: {m}"),
+            })
+        }
         None => job::solve_stages(sc, &settings, |sol| {
             // A stage's results are written as it completes (the last with the others below).
             let name = sol.results.stage.as_ref().map_or("", |s| s.name.as_str());
@@ -305,6 +314,19 @@ fn solve_and_write(label: &str, sc: &Scene, source: &Source, outputs: Outputs, q
             " (unstable: the Hessian has a direction of negative curvature)"
         }
     );
+    if let Some(x) = &r.extrapolation {
+        println!(
+            "{label}: extrapolated from subdivisions ×1 and ×2 (order {}): the finer solve's \
+             error estimated at {:.3e} m ({:.3e} of the structure's size); {} + {} iterations, \
+             {:.3} s in all",
+            x.order,
+            x.error_estimate,
+            x.relative_error_estimate,
+            x.coarse_iterations,
+            x.fine_iterations,
+            x.seconds
+        );
+    }
     if r.converged {
         if let Some(m) = &sol.report.message {
             eprintln!("rodnet: {m}");

@@ -38,6 +38,36 @@ impl From<EnergyParts> for EnergyJson {
     }
 }
 
+/// The Richardson extrapolate of two solves, the scene's subdivision and twice it
+/// (`study::extrapolate`).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ExtrapolationJson {
+    /// The order of the error removed (DER: 2).
+    pub order: f64,
+    /// Each rod's (coarse, fine) subdivision, in scene order.
+    pub subdivide: Vec<[usize; 2]>,
+    /// Each rod's extrapolated nodes at the coarse subdivision, m.
+    pub rods: Vec<ExtrapolatedRod>,
+    /// Largest distance between the fine solution and the extrapolate, m: the estimated error of
+    /// the fine solution (the extrapolate's own error is of higher order).
+    pub error_estimate: f64,
+    /// `error_estimate` over the diagonal of the deformed structure's bounding box.
+    pub relative_error_estimate: f64,
+    /// The extrapolated total energy, J.
+    pub energy: f64,
+    pub coarse_iterations: usize,
+    pub fine_iterations: usize,
+    /// Both solves, s.
+    pub seconds: f64,
+}
+
+/// One rod of an [`ExtrapolationJson`].
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct ExtrapolatedRod {
+    pub name: String,
+    pub points: Vec<[f64; 3]>,
+}
+
 /// Fields beyond the contract's (`name`, `points`, `twist`) default when read back, so that any
 /// results JSON that keeps the contract can be read.
 #[derive(Debug, Clone, Default, Serialize, Deserialize)]
@@ -323,6 +353,10 @@ pub struct Results {
     /// Scenes with a material's `yield_strength`: the most utilized edge.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub utilization: Option<Utilization>,
+    /// `rodnet solve --extrapolate` only: the Richardson extrapolate of this solve and the one
+    /// at half its subdivision (extension).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub extrapolation: Option<ExtrapolationJson>,
     /// Scenes with `stages`: the stage these results are of.
     #[serde(default, skip_serializing_if = "Option::is_none")]
     pub stage: Option<StageJson>,
@@ -486,6 +520,7 @@ impl Results {
             utilization: eq.utilization.clone(),
             stage: None,
             stages: Vec::new(),
+            extrapolation: None,
         }
     }
 
