@@ -5,8 +5,7 @@
 
 use faer::perm::PermRef;
 use faer::sparse::linalg::cholesky::{
-    factorize_symbolic_cholesky, CholeskySymbolicParams, SymbolicCholesky, SymbolicCholeskyRaw,
-    SymmetricOrdering,
+    factorize_symbolic_cholesky, SymbolicCholesky, SymbolicCholeskyRaw, SymmetricOrdering,
 };
 use faer::sparse::SymbolicSparseColMat;
 use faer::{Par, Side};
@@ -94,7 +93,7 @@ pub fn factor_cost(
             pattern.as_ref(),
             Side::Upper,
             ord,
-            CholeskySymbolicParams::default(),
+            super::linalg::symbolic_params(),
         )
         .ok()?;
         Some(analysis(&sym))

@@ -13,6 +13,18 @@ use faer::sparse::linalg::cholesky::{
 use faer::sparse::{SparseColMatRef, SymbolicSparseColMat};
 use faer::{Conj, MatMut, Par, Side};
 
+/// The symbolic analysis's settings. faer's automatic choice (threshold 1) takes the supernodal
+/// factorization when the factor's flops per non-zero exceed 40; on rod networks the supernodal
+/// kernels win from half that: the n = 12 hemisphere's factorizations take 2.7× fewer
+/// instructions (docs/performance.md), while rods and chains (few flops per non-zero) stay
+/// simplicial, where the supernodal overhead would not pay.
+pub fn symbolic_params() -> CholeskySymbolicParams<'static> {
+    CholeskySymbolicParams {
+        supernodal_flop_ratio_threshold: faer::sparse::linalg::SupernodalThreshold(0.5),
+        ..Default::default()
+    }
+}
+
 pub struct SparseCholesky {
     n: usize,
     pattern: SymbolicSparseColMat<usize>,
@@ -92,13 +104,9 @@ impl SparseCholesky {
             Some(fwd) => SymmetricOrdering::Custom(PermRef::new_checked(fwd, &inverse, n)),
             None => SymmetricOrdering::Amd,
         };
-        let symbolic = factorize_symbolic_cholesky(
-            pattern.as_ref(),
-            Side::Upper,
-            ordering,
-            CholeskySymbolicParams::default(),
-        )
-        .expect("symbolic Cholesky analysis");
+        let symbolic =
+            factorize_symbolic_cholesky(pattern.as_ref(), Side::Upper, ordering, symbolic_params())
+                .expect("symbolic Cholesky analysis");
         let par = Par::Seq;
         let factor_mem =
             MemBuffer::new(symbolic.factorize_numeric_llt_scratch::<f64>(par, Default::default()));
