@@ -35,6 +35,11 @@ const FLOOR_CHECK: f64 = 1e-2;
 /// with a smaller increment would discard that progress (`Newton::converging`).
 const CONVERGING_ITERATIONS: f64 = 4.0;
 
+/// An attempt that may be retried gives up after this many steps in a row on which the shift
+/// carries more than half the step's curvature: far in an indefinite region, a smaller
+/// increment is cheaper.
+const INDEFINITE_STEPS: usize = 3;
+
 /// How Newton iterations at one continuation parameter ended.
 pub(super) enum Outcome {
     /// Residual below the tolerance.
@@ -122,6 +127,7 @@ impl Newton {
         let mut it = 0;
         let mut escapes = 0;
         let mut damped = 0;
+        let mut indefinite = 0;
         let mut last_res = f64::INFINITY;
         let mut last_energy = f64::INFINITY;
         let mut floor: Option<f64> = None;
@@ -229,6 +235,11 @@ impl Newton {
                 self.chol.solve(&mut self.d);
                 self.report.factor_seconds += ts.elapsed().as_secs_f64();
             }
+            indefinite = if self.shift_share(shift) > 0.5 {
+                indefinite + 1
+            } else {
+                0
+            };
             if at_cap && !self.converging(e0, last_energy, shift) {
                 return budget();
             }
@@ -247,6 +258,9 @@ impl Newton {
             it += 1;
             self.report.iterations += 1;
             // Repeatedly damped steps far from the solution: a smaller increment is cheaper.
+            if indefinite >= INDEFINITE_STEPS && lim.retry_on_damping {
+                return Outcome::Failed(format!("indefinite Newton steps (residual {res:.3e})"));
+            }
             if damped >= 4 && lim.retry_on_damping {
                 return Outcome::Failed(format!("damped Newton steps (residual {res:.3e})"));
             }
@@ -260,6 +274,18 @@ impl Newton {
     /// Hessian is indefinite along the step and the model says nothing of the distance left.
     fn converging(&self, e0: f64, last_energy: f64, shift: f64) -> bool {
         let slope: f64 = self.g.iter().zip(&self.d).map(|(a, b)| a * b).sum();
+        let decrease = last_energy - e0;
+        self.shift_share(shift) <= 0.1
+            && decrease > 0.0
+            && -0.5 * slope <= CONVERGING_ITERATIONS * decrease
+    }
+
+    /// The share of the step's curvature dᵀ(H + τW)d = −gᵀd that the shift τ carries.
+    fn shift_share(&self, shift: f64) -> f64 {
+        if shift == 0.0 {
+            return 0.0;
+        }
+        let slope: f64 = self.g.iter().zip(&self.d).map(|(a, b)| a * b).sum();
         let shifted: f64 = shift
             * self
                 .d
@@ -267,10 +293,7 @@ impl Newton {
                 .zip(&self.weights)
                 .map(|(d, w)| w * d * d)
                 .sum::<f64>();
-        let decrease = last_energy - e0;
-        shifted <= -0.1 * slope
-            && decrease > 0.0
-            && -0.5 * slope <= CONVERGING_ITERATIONS * decrease
+        shifted / -slope
     }
 
     /// The line search along the step corrected by the first `curves` of `c`, `c2`; accepts
