@@ -1,7 +1,8 @@
 //! `rodnet states` on a clamped shallow cosine arch with a curved, stress-free rest shape,
 //! against shallow-arch theory (`support::shallow_arch`; docs/stability.md, "A bistable shallow
 //! arch"): the rest state, the inverted state (stable only above Q* = 5.6456 when the
-//! antisymmetric mode is free), the S-shaped index-1 saddle between them, and the threshold Q*.
+//! antisymmetric mode is free), the S-shaped index-1 saddle between them, the threshold Q*, and
+//! `rodnet indent`'s report of the bifurcation of a push at the crown.
 
 mod support;
 
@@ -279,4 +280,82 @@ fn the_second_stable_state_appears_at_the_shallow_arch_threshold() {
             "Q = {q}: {all:?}"
         );
     }
+}
+
+/// `rodnet indent` at the crown of `networks/bistable_arch.ron`: under displacement control the
+/// symmetric path loses stability to the antisymmetric mode at depth 1.0209 mm, force
+/// 4.1936e-2 N (P reaches P₂; the held crown leaves mode 2 free), long before the symmetric
+/// path's limit point (0.1003 N at 7.06 mm, examples/shallow_arch.py); then the S-shaped branch,
+/// stable with the crown held, its force falling at −1.385 N/m. Every point is stable (Newton
+/// leaves the unstable symmetric state) and the step where that happened is reported, with the
+/// depth where the lowest eigenvalue of the path before it reaches zero. Errors at 64 edges,
+/// 40 steps of 0.1 mm: depth +1.31 %, force −0.42 % (second order: +5.6 %, +1.31 %, +0.25 %,
+/// −0.01 % in depth at 32, 64, 128, 256 edges, the last the shallow theory's −0.1 %; 20 or 80
+/// steps change the depth by < 0.05 %).
+#[test]
+fn indent_reports_where_the_pushed_arch_bifurcates() {
+    let json = std::env::temp_dir().join(format!("rodnet-arch-indent-{}.json", std::process::id()));
+    let out = std::process::Command::new(env!("CARGO_BIN_EXE_rodnet"))
+        .args(["indent", "networks/bistable_arch.ron", "--at", "arch:32"])
+        .args(["--depth", "0.004", "--steps", "40", "--quiet", "--json"])
+        .arg(&json)
+        .output()
+        .unwrap();
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let v: serde_json::Value = serde_json::from_slice(&std::fs::read(&json).unwrap()).unwrap();
+    let _ = std::fs::remove_file(&json);
+    let curve: Vec<[f64; 2]> = v["curve"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|p| [p[0].as_f64().unwrap(), p[1].as_f64().unwrap()])
+        .collect();
+    let st = v["curve_stability"].as_array().unwrap();
+    assert_eq!(st.len(), curve.len());
+    assert!(st.iter().all(|p| p["stable"] == true), "{st:?}");
+    let left: Vec<usize> = (0..st.len())
+        .filter(|&i| st[i]["left_unstable"] == true)
+        .collect();
+    let b = v["bifurcations"].as_array().unwrap();
+    assert_eq!(b.len(), 1, "{b:?}");
+    let step = b[0]["step"].as_u64().unwrap() as usize;
+    assert_eq!(left, vec![step]);
+
+    let arch = theory(8.0, 0.002);
+    let (depth, force) = arch.centre_push_bifurcation();
+    assert!((depth - 1.0209e-3).abs() < 1e-7 && (force - 4.1936e-2).abs() < 1e-6);
+    let (d, f) = (
+        b[0]["depth"].as_f64().unwrap(),
+        b[0]["force"].as_f64().unwrap(),
+    );
+    eprintln!("bifurcation at {d} m, {f} N; theory {depth} m, {force} N");
+    assert!(
+        curve[step - 1][0] <= d && d <= curve[step][0],
+        "{d} in step {step}"
+    );
+    assert!((d / depth - 1.0).abs() < 2e-2, "{d} vs {depth}");
+    assert!((f / force - 1.0).abs() < 1e-2, "{f} vs {force}");
+    // The eigenvalues it came from fall toward zero.
+    let ev = b[0]["eigenvalues"].as_array().unwrap();
+    let (l0, l1) = (ev[0][1].as_f64().unwrap(), ev[1][1].as_f64().unwrap());
+    assert!(l0 > l1 && l1 > 0.0, "{ev:?}");
+    // Past it, the S-shaped branch: force falling linearly at the theory's slope (−0.51 % at
+    // 64 edges; −1.54, −0.51, −0.25, −0.18 % at 32 to 256, second order toward the shallow
+    // theory's −0.16 %).
+    let slope = arch.s_branch_slope();
+    let (a, z) = (curve[step + 1], curve[curve.len() - 1]);
+    let measured = (z[1] - a[1]) / (z[0] - a[0]);
+    eprintln!("S branch: {measured} N/m, theory {slope} N/m");
+    assert!(
+        (measured / slope - 1.0).abs() < 1e-2,
+        "{measured} vs {slope}"
+    );
+    // The largest force is where it bifurcated, not a limit point of the symmetric path.
+    let lim = v["limit_points"].as_array().unwrap();
+    assert_eq!(lim.len(), 1);
+    assert_eq!(lim[0][0].as_f64().unwrap(), curve[step][0]);
 }

@@ -132,6 +132,20 @@ impl ShallowArch {
     /// depth h − Σ 2a_k is the first crossing. Series summed to k = 200001 (the depth's terms
     /// fall as 1/k⁴).
     pub fn centre_push_bifurcation(&self) -> (f64, f64) {
+        self.centre_push().0
+    }
+
+    /// The force's slope along the depth (N/m) on the S-shaped branch of the centre push that
+    /// follows the bifurcation: P stays P₂ there, so every symmetric coefficient is linear in F
+    /// (a_k = α_k − β_k F as above) and the crown h − depth = Σ 2a_k: dF/d(depth) = 1/Σ 2β_k,
+    /// negative (β₁ < 0 dominates).
+    pub fn s_branch_slope(&self) -> f64 {
+        self.centre_push().1
+    }
+
+    /// (bifurcation depth and force, S-branch slope) of [`Self::centre_push_bifurcation`] and
+    /// [`Self::s_branch_slope`].
+    fn centre_push(&self) -> ((f64, f64), f64) {
         let (l, h, p1, p2) = (self.l, self.h, self.p1(), self.p2());
         let alpha1 = p1 * 0.5 * h / (p1 - p2);
         let g = |k: f64| (2.0 * PI * k).powi(2) / (2.0 * l);
@@ -146,11 +160,12 @@ impl ShallowArch {
         let c1 = -2.0 * g(1.0) * alpha1 * beta(1.0);
         let c0 = g(1.0) * (alpha1 * alpha1 - 0.25 * h * h) + 2.0 * l * p2 / self.ea;
         let root = (c1 * c1 - 4.0 * c2 * c0).sqrt();
-        [(-c1 - root) / (2.0 * c2), (-c1 + root) / (2.0 * c2)]
+        let first = [(-c1 - root) / (2.0 * c2), (-c1 + root) / (2.0 * c2)]
             .into_iter()
             .map(|f| (h - 2.0 * alpha1 + 2.0 * sum_beta * f, f))
             .filter(|&(d, _)| d > 0.0)
             .min_by(|a, b| a.0.total_cmp(&b.0))
-            .expect("a bifurcation on the symmetric path")
+            .expect("a bifurcation on the symmetric path");
+        (first, 1.0 / (2.0 * sum_beta))
     }
 }
