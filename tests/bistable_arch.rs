@@ -16,6 +16,11 @@ const L: f64 = 1.0;
 /// The arch of rise Q·t, thickness `t` in its plane, width 5t, `n` edges (every node an input
 /// point on the cosine).
 fn arch_scene(q: f64, n: usize, t: f64) -> String {
+    arch_scene_with(q, n, t, "")
+}
+
+/// The same with `more` supports (RON, each followed by a comma).
+fn arch_scene_with(q: f64, n: usize, t: f64, more: &str) -> String {
     let h = q * t;
     let points: Vec<String> = (0..=n)
         .map(|i| {
@@ -28,7 +33,7 @@ fn arch_scene(q: f64, n: usize, t: f64) -> String {
         r#"Scene(
     materials: {{"m": Material(young_modulus: {E:e}, poisson_ratio: 0.3, section: Rectangle(width: {w:e}, height: {t:e}))}},
     rods: [Rod(name: "arch", material: "m", points: [{p}], normal: Some((0.0, 1.0, 0.0)))],
-    supports: [Support(rod: "arch", vertex: 0, kind: Clamp), Support(rod: "arch", vertex: {n}, kind: Clamp)],
+    supports: [Support(rod: "arch", vertex: 0, kind: Clamp), Support(rod: "arch", vertex: {n}, kind: Clamp), {more}],
 )"#,
         w = 5.0 * t,
         p = points.join(", ")
@@ -73,7 +78,11 @@ fn describe(f: &Found, r: &rodnet::io::results::Results) -> ArchState {
 }
 
 fn search(q: f64, n: usize, t: f64, max: usize) -> Vec<ArchState> {
-    let scene = rodnet::scene::parse("arch.ron", &arch_scene(q, n, t)).unwrap();
+    search_scene(&arch_scene(q, n, t), max)
+}
+
+fn search_scene(text: &str, max: usize) -> Vec<ArchState> {
+    let scene = rodnet::scene::parse("arch.ron", text).unwrap();
     let found = states(&scene, &settings_of(&scene), max).unwrap();
     found.iter().map(|(f, r)| describe(f, r)).collect()
 }
@@ -280,6 +289,45 @@ fn the_second_stable_state_appears_at_the_shallow_arch_threshold() {
             "Q = {q}: {all:?}"
         );
     }
+}
+
+/// With the crown's slope held (a stiff rotational spring there: 100 N·m/rad, 1.5e4 EI/L),
+/// the antisymmetric modes need each half to buckle as a clamped strut (4 P₁): the inverted
+/// state, at P < 3 P₁, is then stable as soon as it exists, for Q > √(16/3) = 2.309 (Qiu, Lang &
+/// Slocum's threshold, their double beam holding the centre), and the barrier between it and
+/// rest is the symmetric, nearly flat state a₋, index 1 while its P = P₁(1 + 1/a₋) < 4 P₁
+/// (Q < √6 = 2.449). At Q = 2.2: rest only; at Q = 2.4: rest, inverted (stable) and the
+/// symmetric index-1 saddle; energies −1.75e-3 from the theory at 64 edges (discretization
+/// −1.6e-3, as at Q = 8, and −1.4e-4 of the shallow theory at h/L = 0.0048).
+#[test]
+fn with_its_crown_slope_held_the_arch_is_bistable_from_q_2_31() {
+    let spring = r#"Support(rod: "arch", vertex: 32, kind: Spring(stiffness: (0.0, 0.0, 0.0), rotational: Some((0.0, 100.0, 0.0))))"#;
+    let t = 0.002;
+    assert!(theory(2.2, t).inverted().is_none());
+    let only_rest = search_scene(&arch_scene_with(2.2, 64, t, spring), 8);
+    assert_eq!(only_rest.len(), 1, "{only_rest:?}");
+    let arch = theory(2.4, t);
+    let [inv_th, flat_th] = arch.inverted().unwrap();
+    let all = search_scene(&arch_scene_with(2.4, 64, t, spring), 8);
+    eprintln!("{all:?}");
+    assert_eq!(all.len(), 3, "{all:?}");
+    let inv = inverted(&all, arch.h).expect("inverted");
+    assert!(inv.stable && inv.index == 0, "{inv:?}");
+    assert!(
+        (inv.energy / inv_th.energy - 1.0).abs() < 2.5e-3,
+        "{inv:?} vs {inv_th:?}"
+    );
+    let saddle = all
+        .iter()
+        .find(|s| s.index == 1)
+        .expect("the symmetric saddle");
+    assert!(saddle.asymmetry < 1e-6 * arch.h, "{saddle:?}");
+    assert!(
+        (saddle.crown / flat_th.crown - 1.0).abs() < 1e-2,
+        "{saddle:?} vs {flat_th:?}"
+    );
+    let err = saddle.energy / flat_th.energy - 1.0;
+    assert!(err.abs() < 2.5e-3, "{saddle:?} vs {flat_th:?}");
 }
 
 /// `rodnet indent` at the crown of `networks/bistable_arch.ron`: under displacement control the

@@ -262,14 +262,25 @@ fn reversed(net: &Network, state: &State, rest: &State) -> State {
 }
 
 /// `state` with its free nodes mirrored through the plane of the supports (through the three
-/// supported nodes farthest apart; for supports on a line, the plane through it that the
+/// held nodes farthest apart; for supports on a line, the plane through it that the
 /// structure's farthest node is farthest from); `None` with fewer than two supported places or
 /// a structure on the line of its supports (a column: reversing its deflection is the mirror).
 fn mirrored(net: &Network, state: &State, size: f64) -> Option<State> {
     let m = &net.model;
     let l = &m.layout;
     let at = |n: usize| l.position(&state.q, n);
-    let held: Vec<[f64; 3]> = net.supports.iter().map(|s| at(s.node)).collect();
+    // Supports that hold their node (a coordinate fixed, or on a roller's plane); an elastic
+    // support moves with the structure and says nothing of where it is held.
+    let held: Vec<[f64; 3]> = net
+        .supports
+        .iter()
+        .map(|s| s.node)
+        .filter(|&n| {
+            let v = l.node(n);
+            v.iter().any(|&x| m.free[x] == crate::variables::FIXED) || m.rollers.touches(&v)
+        })
+        .map(at)
+        .collect();
     let (a, b) = farthest_pair(&held)?;
     let u = normalize(sub(b, a));
     let off_line = |p: [f64; 3]| {
