@@ -1,10 +1,12 @@
 //! Multiple equilibria (`rodnet states`): from the scene's own equilibrium, the network's
-//! deflection from rest is reversed, and it is pushed along its lowest eigenmodes, both ways and
-//! by the amplitudes of [`AMPLITUDES`]; Newton (which leaves saddles along negative curvature)
-//! settles each start; states not seen before are kept and
-//! searched from in turn, breadth first. Pushes reach local minima (and the scene's own
-//! equilibrium whatever its index); unstable equilibria are then sought by Newton on the
-//! residual alone from the rest state and from midpoints between the minima found.
+//! deflection from rest is reversed, it is mirrored through its supports' plane, and it is
+//! pushed along its lowest eigenmodes, both ways and by the amplitudes of [`AMPLITUDES`];
+//! Newton (which leaves saddles along negative curvature) settles each start; states not seen
+//! before are kept and searched from in turn, breadth first. These reach local minima (and the
+//! scene's own equilibrium whatever its index); unstable equilibria are then sought by Newton
+//! on the residual alone from the rest state, from the minima's mirror images, from midpoints
+//! between them, and from where the holding force changes sign on the displacement-controlled
+//! path between two of them (`network/drag.rs`).
 
 use crate::math::vec::{cross, dist, dot, norm, normalize, scale, sub};
 use crate::network::drag;
