@@ -412,6 +412,7 @@ pub fn indent(
     // The push holds every stage's loads at their full values.
     let curve = push(&sc.all_stages(), &sol.network, &how, &settings).map_err(IndentError::Push)?;
     let (pts, lims) = crate::io::indent::IndentJson::curve_of(&curve);
+    let (curve_stability, bifurcations) = crate::io::indent::IndentJson::stability_of(&curve);
     let json = crate::io::indent::IndentJson {
         rod,
         vertex,
@@ -425,6 +426,8 @@ pub fn indent(
         max_lateral_force: curve.lateral,
         curve: pts,
         limit_points: lims,
+        curve_stability,
+        bifurcations,
         complete: curve.complete,
         message: curve.message.clone(),
         solve_iterations: sol.report.iterations,

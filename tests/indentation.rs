@@ -76,7 +76,8 @@ fn rodnet() -> std::process::Command {
 
 /// The hemisphere's footprint (n = 8, K = 4), form-found with `buckle_toward` by `indent`
 /// itself, then pushed at its apex: the Hessian's stiffness and the slope of a 10 µm push
-/// agree; a 5 cm push gives a complete, rising curve, a CSV with units and a PNG.
+/// agree; a 5 cm push gives a complete, rising curve, stable at every point, a CSV with units
+/// and a PNG.
 #[test]
 fn indenting_a_gridshell_apex_two_ways_agrees() {
     let d = std::env::temp_dir().join(format!("rodnet-indent-{}", std::process::id()));
@@ -167,6 +168,15 @@ fn indenting_a_gridshell_apex_two_ways_agrees() {
         .collect();
     assert_eq!(f.len(), 11);
     assert!(f.windows(2).all(|w| w[1] > w[0]), "{f:?}");
+    // Stable at every point with the apex held, and no bifurcation on the way.
+    let st = deep["curve_stability"].as_array().unwrap();
+    assert_eq!(st.len(), 11);
+    assert!(
+        st.iter()
+            .all(|p| p["stable"] == true && p["left_unstable"] == false),
+        "{st:?}"
+    );
+    assert_eq!(deep["bifurcations"].as_array().unwrap().len(), 0);
     let csv = std::fs::read_to_string(&csv).unwrap();
     assert!(csv.starts_with("depth_m,force_N\n"), "{csv}");
     assert_eq!(csv.lines().count(), 12);

@@ -125,7 +125,7 @@ fn summary(label: &str, o: &IndentJson) {
     let last = o.curve.last().copied().unwrap_or([0.0, 0.0]);
     println!(
         "{label}: pushed {} vertex {} by {:.4e} m ({}): linear stiffness {k}; force {:.6e} N at \
-         depth {:.4e} m; {} limit point(s); {} Newton iterations, {:.3} s",
+         depth {:.4e} m; {} limit point(s); {}; {} Newton iterations, {:.3} s",
         o.rod,
         o.vertex,
         o.depth,
@@ -137,6 +137,15 @@ fn summary(label: &str, o: &IndentJson) {
         last[1],
         last[0],
         o.limit_points.len(),
+        match o.bifurcations.first() {
+            None => "no loss of stability".to_string(),
+            Some(b) => format!(
+                "{} loss(es) of stability, the first at depth {:.4e} m, force {:.6e} N",
+                o.bifurcations.len(),
+                b.depth,
+                b.force
+            ),
+        },
         o.iterations,
         o.seconds
     );

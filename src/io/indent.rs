@@ -30,6 +30,13 @@ pub struct IndentJson {
     pub curve: Vec<[f64; 2]>,
     /// Local maxima of the force: [depth m, force N].
     pub limit_points: Vec<[f64; 2]>,
+    /// The stability of each point of `curve` with the pushed point held (extension).
+    #[serde(default)]
+    pub curve_stability: Vec<PointStabilityJson>,
+    /// Where the path lost stability: a bifurcation (or a fold in depth that displacement
+    /// control jumps across) (extension).
+    #[serde(default)]
+    pub bifurcations: Vec<BifurcationJson>,
     /// Every step reached equilibrium (else `message` says where the curve stops).
     pub complete: bool,
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -40,11 +47,60 @@ pub struct IndentJson {
     pub seconds: f64,
 }
 
+/// One point of the curve: the Hessian with the pushed point held.
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct PointStabilityJson {
+    /// Positive definite: a minimum under displacement control.
+    pub stable: bool,
+    /// The step's solve reached a state that was not stable and left it (the path it
+    /// continued lost stability within the step).
+    pub left_unstable: bool,
+}
+
+#[derive(Debug, Clone, Serialize, Deserialize)]
+pub struct BifurcationJson {
+    /// Index in `curve` of the step whose solve left the unstable state.
+    pub step: usize,
+    /// Where the lowest eigenvalue of the path before it reaches zero (linear extrapolation
+    /// from the two points before, within the step), m, and the force there on that path, N.
+    pub depth: f64,
+    pub force: f64,
+    /// [depth m, lowest eigenvalue N/m] at the two points before the step (null where there
+    /// is none or the eigen-solve failed).
+    pub eigenvalues: Vec<[Option<f64>; 2]>,
+}
+
 impl IndentJson {
     pub fn curve_of(c: &Curve) -> (Vec<[f64; 2]>, Vec<[f64; 2]>) {
         (
             c.points.iter().map(|&(d, f)| [d, f]).collect(),
             c.limit_points.iter().map(|&(d, f)| [d, f]).collect(),
+        )
+    }
+
+    /// The curve's stability and bifurcations as written.
+    pub fn stability_of(c: &Curve) -> (Vec<PointStabilityJson>, Vec<BifurcationJson>) {
+        (
+            c.stability
+                .iter()
+                .map(|s| PointStabilityJson {
+                    stable: s.stable,
+                    left_unstable: s.left_unstable,
+                })
+                .collect(),
+            c.bifurcations
+                .iter()
+                .map(|b| BifurcationJson {
+                    step: b.step,
+                    depth: b.depth,
+                    force: b.force,
+                    eigenvalues: b
+                        .eigenvalues
+                        .iter()
+                        .map(|&(d, l)| [d, l].map(|v| v.is_finite().then_some(v)))
+                        .collect(),
+                })
+                .collect(),
         )
     }
 }

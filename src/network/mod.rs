@@ -8,6 +8,7 @@ pub mod buckle;
 pub mod budget;
 pub mod build;
 pub mod contact;
+pub mod drag;
 pub mod equilibrium;
 pub mod indent;
 pub mod info;

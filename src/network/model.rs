@@ -175,6 +175,18 @@ impl Model {
         }
     }
 
+    /// Holds variable `v` where it is (a support on one coordinate, as an axis Roller is),
+    /// renumbering the free unknowns; `staged` may then move it.
+    pub fn hold(&mut self, v: usize) {
+        self.free[v] = FIXED;
+        let mut n = 0;
+        for f in self.free.iter_mut().filter(|f| **f != FIXED) {
+            *f = n;
+            n += 1;
+        }
+        self.n_free = n as usize;
+    }
+
     /// The free unknowns, for code that needs the free map but not the model.
     pub fn unknowns(&self) -> Unknowns<'_> {
         Unknowns {

@@ -43,16 +43,18 @@ pub struct Stability {
 
 /// The lowest `k` eigenmodes of the network at its current state.
 pub fn analyse(net: &mut Network, k: usize) -> Result<Stability, String> {
+    analyse_problem(&mut NetworkProblem::of_network(net), k)
+}
+
+/// [`analyse`] of a network already lent to the solver (a push's held network, step by step).
+pub fn analyse_problem(p: &mut NetworkProblem, k: usize) -> Result<Stability, String> {
     let t0 = Instant::now();
-    let ebar = mean_edge(&net.model);
-    let mut p = NetworkProblem::of_network(net);
-    let sp = spectrum::lowest_modes(&mut p, k, Ordering::Auto)?;
+    let ebar = mean_edge(p.model);
+    let sp = spectrum::lowest_modes(p, k, Ordering::Auto)?;
     let zero: Vec<Vec<f64>> = zero_vectors(&sp);
-    let gauge = !zero.is_empty() && crate::solver::NewtonProblem::gauge_only(&mut p, &zero);
-    let negative = sp
-        .values
-        .iter()
-        .filter(|&&l| l < 0.0 && !sp.is_zero(l))
+    let gauge = !zero.is_empty() && crate::solver::NewtonProblem::gauge_only(p, &zero);
+    let negative = (0..sp.values.len())
+        .filter(|&i| sp.values[i] < 0.0 && !sp.is_zero(i))
         .count();
     let zero_kind = (!zero.is_empty()).then(|| {
         if gauge {
@@ -77,11 +79,9 @@ pub fn analyse(net: &mut Network, k: usize) -> Result<Stability, String> {
 }
 
 fn zero_vectors(sp: &Spectrum) -> Vec<Vec<f64>> {
-    sp.values
-        .iter()
-        .zip(&sp.vectors)
-        .filter(|(l, _)| sp.is_zero(**l))
-        .map(|(_, v)| v.clone())
+    (0..sp.values.len())
+        .filter(|&i| sp.is_zero(i))
+        .map(|i| sp.vectors[i].clone())
         .collect()
 }
 

@@ -15,6 +15,8 @@ const MAX_ITERATIONS: usize = 60;
 /// Armijo constant of the residual line search.
 const DECREASE: f64 = 1e-4;
 const MIN_STEP: f64 = 1e-10;
+/// Relative residual below which the round-off floor is measured (as `newton.rs` does).
+const FLOOR_CHECK: f64 = 1e-2;
 
 /// Converges from the problem's current state at each continuation parameter of `path` in
 /// turn, each from the last (one workspace, one symbolic analysis, for the whole path); the
@@ -62,6 +64,11 @@ fn converge_at<P: NewtonProblem>(
             report.message = Some("non-finite energy or residual".into());
             break;
         }
+        // Below the residual that rounding the unknowns alone makes, the ‖g‖² line search
+        // accepts steps on noise without ending: measure it once the residual is small.
+        if floor == 0.0 && report.residual < FLOOR_CHECK {
+            floor = p.residual_floor(&nt.g);
+        }
         if report.residual <= settings.tolerance.max(floor) {
             report.converged = true;
             report.stopped_at_floor = report.residual > settings.tolerance;
@@ -99,7 +106,7 @@ fn converge_at<P: NewtonProblem>(
             // At the round-off floor no step lowers the residual: measure it once, then stop
             // there if that is where the iteration is.
             let f = p.residual_floor(&nt.g);
-            if floor == 0.0 && report.residual <= 10.0 * f {
+            if floor < 10.0 * f && report.residual <= 10.0 * f {
                 floor = 10.0 * f;
                 continue;
             }

@@ -35,13 +35,32 @@ pub struct Spectrum {
     pub converged: bool,
     /// The shift τ that made H + τW positive definite for the inverse iteration.
     pub shift: f64,
+    /// Per pair, the band around zero (J) its eigenvalue must leave to count as not zero.
+    pub zero_band: Vec<f64>,
 }
 
 impl Spectrum {
-    /// Whether eigenvalue `l` is zero at the Hessian's scale.
-    pub fn is_zero(&self, l: f64) -> bool {
-        l.abs() < 1e-10 * self.scale
+    /// Whether eigenvalue `i` is zero: below 1e-10 of the Hessian's scaled diagonal, and not
+    /// resolved from zero (see [`zero_band`]).
+    pub fn is_zero(&self, i: usize) -> bool {
+        self.values[i].abs() < self.zero_band[i]
     }
+}
+
+/// How far from zero an eigenvalue must be to count as resolved (J): above its Ritz residual
+/// ‖Hu − λWu‖_W⁻¹ (an eigenvalue of H lies within it), above ten times the gradient's size
+/// ‖g‖_W⁻¹ (a symmetry's zero mode at a state off equilibrium by g is lifted by about ‖g‖
+/// over the size of the symmetry's motion, itself at least about one in W's units), and above
+/// round-off (1e-13 of the scale); at most 1e-10 of the scale, as zero has always been taken.
+/// The cap alone called a slender rod's soft bending modes zero at fine discretizations, the
+/// scale being the stretch stiffness (∝ n) and the soft modes' eigenvalues ∝ 1/n: a clamped
+/// shallow arch's inverted state, n = 64, near its stability threshold (λ ≈ 1e-11 of the scale,
+/// residual 1e-13; docs/stability.md).
+fn zero_band(residual: f64, gradient: f64, scale: f64) -> f64 {
+    (2.0 * residual)
+        .max(10.0 * gradient)
+        .max(1e-13 * scale)
+        .min(1e-10 * scale)
 }
 
 /// The `k` lowest eigenpairs of the problem's Hessian at its current state.
@@ -71,6 +90,8 @@ pub fn lowest_modes<P: NewtonProblem>(
     let (pairs, rounds, converged) = (ritz.pairs, ritz.rounds, ritz.settled);
     let mut hv = vec![0.0; n];
     let mut residual: f64 = 0.0;
+    let gradient = (0..n).map(|i| nt.g[i] * nt.g[i] / w[i]).sum::<f64>().sqrt();
+    let mut band = Vec::with_capacity(pairs.len());
     for (l, u) in &pairs {
         nt.chol.multiply(u, &mut hv);
         // ‖r‖ in the W⁻¹ norm, r = Hu − λWu: the dual norm of the W-unit vector u.
@@ -78,6 +99,7 @@ pub fn lowest_modes<P: NewtonProblem>(
             .map(|i| (hv[i] - l * w[i] * u[i]).powi(2) / w[i])
             .sum();
         residual = residual.max(r2.sqrt() / scale);
+        band.push(zero_band(r2.sqrt(), gradient, scale));
     }
     Ok(Spectrum {
         values: pairs.iter().map(|p| p.0).collect(),
@@ -87,6 +109,7 @@ pub fn lowest_modes<P: NewtonProblem>(
         rounds,
         converged,
         shift,
+        zero_band: band,
     })
 }
 

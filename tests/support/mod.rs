@@ -29,6 +29,7 @@ pub mod heavy;
 pub mod linear;
 pub mod ode;
 pub mod roots;
+pub mod shallow_arch;
 mod vector;
 
 pub use buckling::{
