@@ -1,0 +1,73 @@
+"""Driving OpenSees (openseespy): static load control with the fewest load steps that converge.
+
+`build()` creates the model, its loads in a Plain pattern on a Linear time series, and returns a
+function that reads the result.  The timed solve is everything from `wipe()` to the last
+`analyze` (model building through the Python API included, Python import excluded)."""
+import math
+import time
+
+import openseespy.opensees as ops
+
+SYSTEM, NUMBERER = "UmfPack", "RCM"
+TOL, MAX_ITER = 1e-10, 50  # NormDispIncr (m, rad): far below the errors measured
+ALGORITHMS = {
+    "NewtonLineSearch": ("NewtonLineSearch",),
+    "NewtonLineSearch/Bisection": ("NewtonLineSearch", "-type", "Bisection"),
+    "Newton": ("Newton",),
+}
+STEPS = (1, 2, 3, 4, 6, 8, 12, 16, 24, 32, 48, 64)
+
+
+def quiet():
+    """Send OpenSees' messages (warnings of failed attempts while tuning) to out/opensees.log."""
+    from common import OUT
+    OUT.mkdir(parents=True, exist_ok=True)
+    ops.logFile(str(OUT / "opensees.log"), "-noEcho")
+
+
+def solve(build, algorithm, steps, cap=math.inf):
+    """One timed solve: (seconds, value); None if a step fails, "cap" if it runs past `cap` s."""
+    t0 = time.perf_counter()
+    ops.wipe()
+    read = build()
+    ops.system(SYSTEM)
+    ops.numberer(NUMBERER)
+    ops.constraints("Plain")
+    ops.test("NormDispIncr", TOL, MAX_ITER)
+    ops.algorithm(*ALGORITHMS[algorithm])
+    ops.integrator("LoadControl", 1.0 / steps)
+    ops.analysis("Static")
+    for _ in range(steps):
+        if ops.analyze(1) != 0:
+            return None
+        if time.perf_counter() - t0 > cap:
+            return "cap"
+    value = read()
+    return time.perf_counter() - t0, value
+
+
+def tune(build, hint=None):
+    """(algorithm, steps): the fewest load steps (from STEPS) that converge, and of the
+    algorithms the fastest.  Without a hint every algorithm is tried (attempts stop at 1.5x the
+    best time so far); with the (algorithm, steps) of a coarser level only fewer steps of that
+    algorithm are tried, and the full search runs only if the hint fails."""
+    if hint is not None:
+        alg, steps = hint
+        if solve(build, alg, steps) is not None:
+            for fewer in (s for s in STEPS if s < steps):
+                if solve(build, alg, fewer) is not None:
+                    return alg, fewer
+            return alg, steps
+    best = None
+    for alg in ALGORITHMS:
+        for steps in STEPS:
+            r = solve(build, alg, steps, 1.5 * best[0] if best else math.inf)
+            if r == "cap":
+                break
+            if r is not None:
+                if best is None or r[0] < best[0]:
+                    best = (r[0], alg, steps)
+                break
+    if best is None:
+        raise RuntimeError("OpenSees: no algorithm converged with up to %d load steps" % STEPS[-1])
+    return best[1], best[2]

@@ -1,0 +1,93 @@
+"""rodnet beside OpenSees and PyElastica on the same problems: runs, errors, time to accuracy.
+
+    python peers.py [cantilever] [timoshenko] [grid10] [grid20]     (default: all four)
+
+Prints Markdown tables and writes out/runs.csv and out/summary.csv (PEERS_OUT to move them)."""
+import os
+import platform
+import sys
+import time
+from importlib.metadata import version
+
+import common
+from common import TARGETS, fmt
+
+RUN_HEADER = ["problem", "code", "level", "seconds", "seconds_all", "value", "error", "note"]
+SUMMARY_HEADER = ["problem", "code", "target", "seconds_interpolated", "seconds_first_run", "rodnet_over_code_interpolated"]
+
+
+def cantilever():
+    import cantilever as c
+    import reference
+    for name, kw in (("extensible Kirchhoff", dict(EA=c.E * c.A)),
+                     ("PyElastica Cosserat", dict(EA=c.E * c.A, GA=27 / 28 * c.G * c.A, pyelastica=True))):
+        x, y = reference.rod_tip(c.L, c.EI, c.P, **kw)
+        print(f"cantilever: the {name} rod's tip differs from the elastica's by {c.error(x, y):.2e} (relative)")
+    print(f"cantilever: elastica tip ({c.REF[0]:.12f}, {c.REF[1]:.12f}) m")
+    return {"rodnet": c.rodnet_runs(), "OpenSees": c.opensees_runs(), "PyElastica": c.pyelastica_runs()}
+
+
+def timoshenko():
+    import timoshenko as t
+    print(f"timoshenko: Cosserat tip {t.REF_COSSERAT}, Kirchhoff tip {t.REF_KIRCHHOFF} (m)")
+    zeta, fractions = t.best_damping()
+    print("timoshenko: PyElastica damping constant -> settling time / run time at n = 50: "
+          + ", ".join(f"{z}: {f:.3f}" for z, f in fractions.items()) + f"; using {zeta}")
+    return {"rodnet": t.rodnet_runs(), "PyElastica": t.pyelastica_runs(zeta)}
+
+
+def grid(n):
+    import grid as g
+    runs = {"rodnet": g.rodnet_runs(n), "OpenSees": g.opensees_runs(n)}
+    w = {}
+    for code, rows in runs.items():
+        w[code], p = g.richardson(rows)
+        print(f"grid {n}x{n}: {code} Richardson extrapolate {w[code]:.10f} m (observed order {p:.2f})")
+    print(f"grid {n}x{n}: extrapolates differ by {abs(w['rodnet'] - w['OpenSees']) / w['OpenSees']:.1e} (relative)")
+    return runs
+
+
+def report(problem, runs, run_rows, summary_rows):
+    rows = []
+    for code, rs in runs.items():
+        for r in rs:
+            rows.append([code, r["n"], fmt(r["seconds"], ".4g"), " ".join(format(t, ".3g") for t in r["all_seconds"]),
+                         fmt(r.get("value"), ".10g"), fmt(r["error"], ".2e"), r["note"]])
+            run_rows.append([problem] + rows[-1])
+    common.table(f"{problem}: runs", ["code", "level", "s (median)", "s (each)", "value", "rel. error", "note"], rows)
+    times = {code: [common.time_to([r["error"] for r in rs], [r["seconds"] for r in rs], e) for e in TARGETS]
+             for code, rs in runs.items()}
+    rows = []
+    for code, tt in times.items():
+        ratios = [None if a is None or b is None else a / b
+                  for a, b in zip((t[0] for t in times["rodnet"]), (t[0] for t in tt))]
+        rows.append([code] + [f"{fmt(a)} ({fmt(b)})" for a, b in tt]
+                    + ([""] * 3 if code == "rodnet" else [fmt(x) for x in ratios]))
+        for e, (a, b), x in zip(TARGETS, tt, ratios):
+            summary_rows.append([problem, code, e, a, b, x])
+    common.table(f"{problem}: seconds to a relative error, interpolated (first run meeting it); rodnet / peer",
+                 ["code"] + [f"to {e:g}" for e in TARGETS] + [f"ratio {e:g}" for e in TARGETS], rows)
+
+
+def main(problems):
+    print(f"# rodnet peers, {time.strftime('%Y-%m-%d %H:%M')}, {platform.node()}, {os.cpu_count()} cores, "
+          f"load average {os.getloadavg()[0]:.2f}")
+    print(f"openseespy {version('openseespy')}, pyelastica {version('pyelastica')}, numpy {version('numpy')}, "
+          f"scipy {version('scipy')}, Python {platform.python_version()}, rodnet {common.RODNET}")
+    import opensees_run
+    import pyelastica_run
+    opensees_run.quiet()
+    pyelastica_run.warm_up()
+    run_rows, summary_rows = [], []
+    jobs = {"cantilever": cantilever, "timoshenko": timoshenko,
+            "grid10": lambda: grid(10), "grid20": lambda: grid(20)}
+    for name in problems or jobs:
+        t0 = time.perf_counter()
+        report(name, jobs[name](), run_rows, summary_rows)
+        print(f"\n({name}: {time.perf_counter() - t0:.0f} s in all, load average {os.getloadavg()[0]:.2f})")
+        common.write_csv("runs.csv", RUN_HEADER, run_rows)
+        common.write_csv("summary.csv", SUMMARY_HEADER, summary_rows)
+
+
+if __name__ == "__main__":
+    main(sys.argv[1:])
