@@ -22,7 +22,7 @@ RHO = 1000.0  # PyElastica only (statics does not depend on it)
 REF = reference.elastica_tip(P * L**2 / EI)
 
 RODNET_N = (10, 20, 40, 80, 160, 320, 640)
-OPENSEES_N = (5, 10, 20, 40, 80, 160, 320)
+OPENSEES_N = (10, 20, 40, 80, 160, 320)
 PYELASTICA_N = (10, 20, 40)
 
 

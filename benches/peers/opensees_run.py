@@ -14,6 +14,7 @@ ALGORITHMS = {
     "NewtonLineSearch": ("NewtonLineSearch",),
     "NewtonLineSearch/Bisection": ("NewtonLineSearch", "-type", "Bisection"),
     "Newton": ("Newton",),
+    "KrylovNewton": ("KrylovNewton",),
 }
 STEPS = (1, 2, 3, 4, 6, 8, 12, 16, 24, 32, 48, 64)
 
@@ -47,26 +48,34 @@ def solve(build, algorithm, steps, cap=math.inf):
 
 
 def tune(build, hint=None):
-    """(algorithm, steps): the fewest load steps (from STEPS) that converge, and of the
-    algorithms the fastest.  Without a hint every algorithm is tried (attempts stop at 1.5x the
-    best time so far); with the (algorithm, steps) of a coarser level only fewer steps of that
-    algorithm are tried, and the full search runs only if the hint fails."""
+    """(algorithm, steps): for each algorithm the fewest load steps (from STEPS) that converge,
+    and of those the fastest.  An algorithm's search stops at its first success, or at a failed
+    attempt that took longer than 1.5x the best so far (more steps would not be faster).  With
+    the (algorithm, steps) of a coarser level as `hint`, that algorithm is tried first from
+    those steps upward (finer models may need more), and the rest of the search is capped."""
+    best, tried = None, set()
+
+    def attempt(alg, steps):  # (converged, seconds taken)
+        nonlocal best
+        tried.add((alg, steps))
+        t0 = time.perf_counter()
+        r = solve(build, alg, steps, 1.5 * best[0] if best else math.inf)
+        if isinstance(r, tuple) and (best is None or r[0] < best[0]):
+            best = (r[0], alg, steps)
+        return isinstance(r, tuple), time.perf_counter() - t0
+
     if hint is not None:
-        alg, steps = hint
-        if solve(build, alg, steps) is not None:
-            for fewer in (s for s in STEPS if s < steps):
-                if solve(build, alg, fewer) is not None:
-                    return alg, fewer
-            return alg, steps
-    best = None
+        for steps in (s for s in STEPS if s >= hint[1]):
+            if attempt(hint[0], steps)[0]:
+                break
     for alg in ALGORITHMS:
         for steps in STEPS:
-            r = solve(build, alg, steps, 1.5 * best[0] if best else math.inf)
-            if r == "cap":
+            if best and alg == best[1] and steps >= best[2]:
                 break
-            if r is not None:
-                if best is None or r[0] < best[0]:
-                    best = (r[0], alg, steps)
+            if (alg, steps) in tried:
+                continue
+            ok, took = attempt(alg, steps)
+            if ok or (best and took > 1.5 * best[0]):
                 break
     if best is None:
         raise RuntimeError("OpenSees: no algorithm converged with up to %d load steps" % STEPS[-1])

@@ -16,9 +16,10 @@ class Cantilever(ea.BaseSystemCollection, ea.Constraints, ea.Forcing, ea.Damping
     pass
 
 
-def run(n, length, radius, density, E, G, force, dt, zeta, t_end, samples=400):
+def run(n, length, radius, density, E, G, force, dt, zeta, t_end, samples=400, blown_up=None):
     """Rod along +x from the origin (normal +z), clamped at node 0, dead force `force` at the
-    tip from t = 0.  Returns (wall seconds, [(wall s, tip position)])."""
+    tip from t = 0.  Returns (wall seconds, [(wall s, tip position)]), or None as soon as a
+    sample is not finite or `blown_up(tip)` says the run has gone unstable."""
     t0 = time.perf_counter()
     sim = Cantilever()
     rod = ea.CosseratRod.straight_rod(n, np.zeros(3), np.array([1.0, 0.0, 0.0]), np.array([0.0, 0.0, 1.0]),
@@ -36,8 +37,8 @@ def run(n, length, radius, density, E, G, force, dt, zeta, t_end, samples=400):
         t = stepper.step(sim, t, dt)
         if i % every == 0 or i == steps:
             tip = rod.position_collection[:, -1]
-            if not np.all(np.isfinite(tip)):
-                raise RuntimeError(f"PyElastica blew up (n = {n}, dt = {dt})")
+            if not np.all(np.isfinite(tip)) or (blown_up and blown_up(tip)):
+                return None
             history.append((time.perf_counter() - t0, tip.copy()))
     return time.perf_counter() - t0, history
 
