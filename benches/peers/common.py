@@ -61,15 +61,19 @@ def repeat(run, reps=None):
 
 def time_to(errors, times, target):
     """Time to reach a relative error: (log-log interpolation, time of the first run meeting it).
-    Runs are taken in the order given (increasing refinement); None when no run reaches it."""
-    for i, (e, t) in enumerate(zip(errors, times)):
-        if e <= target:
-            if i == 0 or errors[i - 1] <= e:
-                return t, t
-            e0, t0 = errors[i - 1], times[i - 1]
-            f = np.log(target / e0) / np.log(e / e0)
-            return float(np.exp(np.log(t0) + f * np.log(t / t0))), t
-    return None, None
+    Runs are in order of refinement; the first run meeting the target is the first from which on
+    every finer run meets it too (coarse levels can meet it by a lucky cancellation and lose it
+    again).  Interpolated between that run and the one before it.  None when no run reaches it."""
+    i = len(errors)
+    while i > 0 and errors[i - 1] <= target:
+        i -= 1
+    if i == len(errors):
+        return None, None
+    if i == 0:
+        return times[0], times[0]
+    (e0, t0), (e, t) = (errors[i - 1], times[i - 1]), (errors[i], times[i])
+    f = np.log(target / e0) / np.log(e / e0)
+    return float(np.exp(np.log(t0) + f * np.log(t / t0))), t
 
 
 def fmt(x, spec=".3g"):

@@ -1,8 +1,10 @@
 """rodnet beside OpenSees and PyElastica on the same problems: runs, errors, time to accuracy.
 
     python peers.py [cantilever] [timoshenko] [grid10] [grid20]     (default: all four)
+    python peers.py --from out/runs.csv                             (the tables of a past run)
 
 Prints Markdown tables and writes out/runs.csv and out/summary.csv (PEERS_OUT to move them)."""
+import csv
 import os
 import platform
 import sys
@@ -29,7 +31,8 @@ def cantilever():
 
 def timoshenko():
     import timoshenko as t
-    print(f"timoshenko: Cosserat tip {t.REF_COSSERAT}, Kirchhoff tip {t.REF_KIRCHHOFF} (m)")
+    print("timoshenko: tip of the Cosserat rod ({:.12f}, {:.12f}) m, of the Kirchhoff rod ({:.12f}, {:.12f}) m"
+          .format(*t.REF_COSSERAT, *t.REF_KIRCHHOFF))
     zeta, fractions = t.best_damping()
     print("timoshenko: PyElastica damping constant -> settling time / run time at n = 50: "
           + ", ".join(f"{z}: {f:.3f}" for z, f in fractions.items()) + f"; using {zeta}")
@@ -53,7 +56,8 @@ def report(problem, runs, run_rows, summary_rows):
         for r in rs:
             rows.append([code, r["n"], fmt(r["seconds"], ".4g"), " ".join(format(t, ".3g") for t in r["all_seconds"]),
                          fmt(r.get("value"), ".10g"), fmt(r["error"], ".2e"), r["note"]])
-            run_rows.append([problem] + rows[-1])
+            run_rows.append([problem, code, r["n"], r["seconds"], " ".join(f"{t:.6g}" for t in r["all_seconds"]),
+                             r.get("value"), r["error"], r["note"]])
     common.table(f"{problem}: runs", ["code", "level", "s (median)", "s (each)", "value", "rel. error", "note"], rows)
     times = {code: [common.time_to([r["error"] for r in rs], [r["seconds"] for r in rs], e) for e in TARGETS]
              for code, rs in runs.items()}
@@ -67,6 +71,27 @@ def report(problem, runs, run_rows, summary_rows):
             summary_rows.append([problem, code, e, a, b, x])
     common.table(f"{problem}: seconds to a relative error, interpolated (first run meeting it); rodnet / peer",
                  ["code"] + [f"to {e:g}" for e in TARGETS] + [f"ratio {e:g}" for e in TARGETS], rows)
+    rows = []
+    for code, rs in runs.items():
+        for r in rs if code != "rodnet" else ():
+            a, b = common.time_to([q["error"] for q in runs["rodnet"]], [q["seconds"] for q in runs["rodnet"]], r["error"])
+            rows.append([code, r["n"], fmt(r["error"], ".2e"), fmt(r["seconds"], ".4g"), f"{fmt(a)} ({fmt(b)})",
+                         fmt(None if a is None else a / r["seconds"])])
+    common.table(f"{problem}: at each peer run's error, rodnet's time to reach it, interpolated (first run meeting it)",
+                 ["code", "level", "rel. error", "peer s", "rodnet s", "rodnet / peer"], rows)
+
+
+def from_csv(path):
+    """The tables of an earlier run, from its runs.csv."""
+    problems = {}
+    with open(path) as f:
+        for r in csv.DictReader(f):
+            num = lambda x: None if x in ("", "—") else float(x)
+            problems.setdefault(r["problem"], {}).setdefault(r["code"], []).append(dict(
+                n=int(r["level"]), seconds=num(r["seconds"]), all_seconds=[float(t) for t in r["seconds_all"].split()],
+                value=num(r["value"]), error=num(r["error"]), note=r["note"]))
+    for problem, runs in problems.items():
+        report(problem, runs, [], [])
 
 
 def main(problems):
@@ -90,4 +115,7 @@ def main(problems):
 
 
 if __name__ == "__main__":
-    main(sys.argv[1:])
+    if sys.argv[1:2] == ["--from"]:
+        from_csv(sys.argv[2])
+    else:
+        main(sys.argv[1:])
