@@ -3,7 +3,7 @@
 #   benches/peers/run.sh [cantilever] [timoshenko] [grid10] [grid20]      (default: all)
 # Creates benches/peers/.venv on first use (openseespy, pyelastica, scipy from PyPI), builds
 # rodnet in release mode if its binary is missing, runs the problems, prints the tables and
-# writes benches/peers/out/{report.md,runs.csv,summary.csv}.
+# writes benches/peers/out/{report.md,runs.csv,summary.csv} (or into $PEERS_OUT).
 set -euo pipefail
 here="$(cd "$(dirname "$0")" && pwd)"
 root="$(cd "$here/../.." && pwd)"
@@ -23,6 +23,7 @@ fi
 lib="$("$venv/bin/python" -c 'import importlib.util as u, pathlib as p; print(p.Path(u.find_spec("openseespylinux").origin).parent / "lib")')"
 export LD_LIBRARY_PATH="$lib${LD_LIBRARY_PATH:+:$LD_LIBRARY_PATH}"
 
-mkdir -p "$here/out"
+export PEERS_OUT="${PEERS_OUT:-$here/out}"
+mkdir -p "$PEERS_OUT"
 cd "$here"
-"$venv/bin/python" -u peers.py "$@" | tee "$here/out/report.md"
+"$venv/bin/python" -u peers.py "$@" | tee "$PEERS_OUT/report.md"
