@@ -4,6 +4,7 @@
 
 pub mod bend;
 pub mod frame_bend;
+pub mod frame_bend_twist;
 pub mod frame_twist;
 pub mod half_stencil;
 pub mod joint_rotation;
@@ -34,6 +35,9 @@ pub enum Category {
 /// A local energy term in `N` variables (indices into [`State::q`]).
 pub trait Term<const N: usize>: Sync + Send {
     const CATEGORY: Category;
+    /// Where the energy is reported: one category per physical term. A fused kernel
+    /// ([`frame_bend_twist`]) evaluates several terms at once and reports each under its own.
+    const CATEGORIES: &'static [Category] = &[Self::CATEGORY];
     fn vars(&self) -> &[usize; N];
     fn eval<T: Real>(&self, st: &State, x: &[T; N]) -> T;
 
@@ -50,6 +54,11 @@ pub trait Term<const N: usize>: Sync + Send {
 
     fn energy(&self, st: &State) -> f64 {
         self.eval::<f64>(st, &self.gather(&st.q))
+    }
+
+    /// Adds the energy of each of [`Term::CATEGORIES`] to `out`, in that order.
+    fn energies_by_category(&self, st: &State, out: &mut [f64]) {
+        out[0] += self.energy(st);
     }
 
     /// The global edge whose rod this term's energy belongs to (per-rod energies), if any.

@@ -4,7 +4,7 @@
 //! goes through [`Terms::visit`]. Adding a term is its file plus one line in `term_kinds!`.
 
 use super::{
-    bend::Bend, frame_bend::FrameBend, frame_twist::FrameTwist, joint_rotation::JointRotation,
+    bend::Bend, frame_bend_twist::FrameBendTwist, joint_rotation::JointRotation,
     joint_translation::JointTranslation, point_load::PointLoad,
     rotational_spring::RotationalSpring, spring::Spring, stretch::Stretch, torque::Torque,
     twist::Twist, Term,
@@ -45,8 +45,7 @@ term_kinds! {
     stretch: Stretch = 6,
     bend: Bend = 11,
     twist: Twist = 11,
-    frame_bend: FrameBend = 11,
-    frame_twist: FrameTwist = 11,
+    frame_bend_twist: FrameBendTwist = 11,
     joint_rotation: JointRotation = 6,
     joint_translation: JointTranslation = 6,
     springs: Spring = 3,

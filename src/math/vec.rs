@@ -132,10 +132,18 @@ fn rodrigues_coeffs<T: Real>(t2: T) -> (T, T) {
 
 /// Rotates `v` by exp(ω̂) (rotation vector ω, spatial).
 pub fn rotate<T: Real>(w: V3<T>, v: V3<T>) -> V3<T> {
+    let [r] = rotate_each(w, [v]);
+    r
+}
+
+/// [`rotate`] of several vectors by the same ω (the coefficients are computed once).
+pub fn rotate_each<T: Real, const K: usize>(w: V3<T>, vs: [V3<T>; K]) -> [V3<T>; K] {
     let (a, b) = rodrigues_coeffs(dot(w, w));
-    let wv = cross(w, v);
-    let wwv = cross(w, wv);
-    add(add(v, scale(wv, a)), scale(wwv, b))
+    vs.map(|v| {
+        let wv = cross(w, v);
+        let wwv = cross(w, wv);
+        add(add(v, scale(wv, a)), scale(wwv, b))
+    })
 }
 
 /// Rotation about unit axis `n` by angle `alpha` applied to `v`.

@@ -99,16 +99,23 @@ impl Path<'_, '_> {
         // the end), not a side of a crossing.
         let zero = 1e-6 * largest;
         let mut last = &from;
+        // A step that lands on the barrier itself (a path symmetric about it) has a round-off
+        // force of either sign: the crossing is then that step, if the sign changes across it.
+        let mut on_barrier: Option<&(State, f64)> = None;
         for s in &samples {
-            if last.1 * s.1 < 0.0 && s.1.abs() > zero {
-                let t = last.1 / (last.1 - s.1);
-                let mut start = if t < 0.5 { last.0.clone() } else { s.0.clone() };
-                for v in self.p.model.layout.positions() {
-                    start.q[v] = last.0.q[v] + t * (s.0.q[v] - last.0.q[v]);
-                }
+            if s.1.abs() <= zero {
+                on_barrier.get_or_insert(s);
+                continue;
+            }
+            if last.1 * s.1 < 0.0 {
+                let start = match on_barrier {
+                    Some(b) => b.0.clone(),
+                    None => self.interpolated(last, s),
+                };
                 let at = start.q[self.var];
                 self.out.push(Crossing { state: start, at });
             }
+            on_barrier = None;
             last = s;
         }
         if depth == 0 || samples.is_empty() {
@@ -122,6 +129,17 @@ impl Path<'_, '_> {
         if to_minimum && reached && n >= 2 && samples[n - 2].1 * self.sigma > 0.0 {
             self.scan(samples[n - 2].clone(), to, depth - 1, true);
         }
+    }
+
+    /// The nearer of two steps whose forces have opposite signs, with its positions
+    /// interpolated linearly to the force's zero.
+    fn interpolated(&self, a: &(State, f64), b: &(State, f64)) -> State {
+        let t = a.1 / (a.1 - b.1);
+        let mut start = if t < 0.5 { a.0.clone() } else { b.0.clone() };
+        for v in self.p.model.layout.positions() {
+            start.q[v] = a.0.q[v] + t * (b.0.q[v] - a.0.q[v]);
+        }
+        start
     }
 
     /// The states and holding forces of the steps from `from` to `to` (up to the first that

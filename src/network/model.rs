@@ -207,13 +207,15 @@ impl Model {
     }
 
     /// Calls `f(kind, category, energy)` for every term kind at the current state, in the order
-    /// of [`Terms::NAMES`].
+    /// of [`Terms::NAMES`], once per category of the kind ([`Term::CATEGORIES`]).
     fn each_kind_energy(&self, f: impl FnMut(usize, Category, f64)) {
         struct Each<'a, F>(&'a State, F);
         impl<F: FnMut(usize, Category, f64)> TermVisitor for Each<'_, F> {
             fn visit<const N: usize, E: Term<N>>(&mut self, kind: usize, terms: &[E]) {
                 let e = sum_energy(terms, self.0);
-                (self.1)(kind, E::CATEGORY, e);
+                for (&c, &e) in E::CATEGORIES.iter().zip(&e) {
+                    (self.1)(kind, c, e);
+                }
             }
         }
         self.terms.visit(&mut Each(&self.state, f));
@@ -407,8 +409,8 @@ impl Model {
     /// with the nodes. Clamped frames keep the orientation their supports prescribe.
     pub fn turn_frames(&mut self, rotation: impl Fn(&Model, &FrameBend) -> [f64; 3]) {
         let mut turned = vec![false; self.state.frames.len()];
-        for k in 0..self.terms.frame_bend.len() {
-            let fb = &self.terms.frame_bend[k];
+        for k in 0..self.terms.frame_bend_twist.len() {
+            let fb = &self.terms.frame_bend_twist[k].bend;
             let f = fb.port.frame;
             let held = self.free[self.layout.frame(f)[0]] == FIXED;
             if !std::mem::replace(&mut turned[f], true) && !held {
@@ -452,7 +454,7 @@ impl Model {
         struct Count(Category, usize);
         impl TermVisitor for Count {
             fn visit<const N: usize, E: Term<N>>(&mut self, _: usize, terms: &[E]) {
-                if E::CATEGORY == self.0 {
+                if E::CATEGORIES.contains(&self.0) {
                     self.1 += terms.len();
                 }
             }
@@ -510,10 +512,23 @@ impl Model {
     }
 }
 
-fn sum_energy<const N: usize, E: Term<N>>(terms: &[E], st: &State) -> f64 {
+/// The most categories one kind of term reports ([`Term::CATEGORIES`]).
+const MAX_CATEGORIES: usize = 2;
+
+/// Sum of the energies of `terms`, by category of their kind.
+fn sum_energy<const N: usize, E: Term<N>>(terms: &[E], st: &State) -> [f64; MAX_CATEGORIES] {
+    let one = |t: &E| {
+        let mut e = [0.0; MAX_CATEGORIES];
+        t.energies_by_category(st, &mut e[..E::CATEGORIES.len()]);
+        e
+    };
+    let plus = |a: [f64; MAX_CATEGORIES], b: [f64; MAX_CATEGORIES]| [a[0] + b[0], a[1] + b[1]];
     if terms.len() > 2048 {
-        terms.par_iter().map(|t| t.energy(st)).sum()
+        terms
+            .par_iter()
+            .map(one)
+            .reduce(|| [0.0; MAX_CATEGORIES], plus)
     } else {
-        terms.iter().map(|t| t.energy(st)).sum()
+        terms.iter().map(one).fold([0.0; MAX_CATEGORIES], plus)
     }
 }

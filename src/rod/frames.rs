@@ -77,12 +77,13 @@ pub struct FrameDots<T> {
 }
 
 impl<T: Real> FrameDots<T> {
-    /// With `dot` the scalar product of a frame-0 and a frame-1 vector.
+    /// With `dot` the scalar product of a frame-0 and a frame-1 vector (the two frames may
+    /// depend on different variables).
     #[inline(always)]
-    pub fn new<F: Real>(
-        f0: &RefFrame<F>,
-        f1: &RefFrame<F>,
-        dot: impl Fn(&V3<F>, &V3<F>) -> T,
+    pub fn new<F0: Real, F1: Real>(
+        f0: &RefFrame<F0>,
+        f1: &RefFrame<F1>,
+        dot: impl Fn(&V3<F0>, &V3<F1>) -> T,
     ) -> Self {
         FrameDots {
             tt: dot(&f0.t, &f1.t),

@@ -25,15 +25,20 @@ impl Port {
     /// Current port frame (d1, d2, d3) from the frame's increment ω and the hinge angle α.
     pub fn frame<T: Real>(&self, st: &State, w: V3<T>, alpha: T) -> [V3<T>; 3] {
         let q = &st.frames[self.frame].rotation;
-        let n = lift(self.hinge_axis);
-        std::array::from_fn(|k| {
-            let body = rotate_axis(n, alpha, lift(self.rest[k]));
-            // Q · body, with Q stored as columns.
-            let world = add(
-                add(scale(lift(q[0]), body[0]), scale(lift(q[1]), body[1])),
-                scale(lift(q[2]), body[2]),
-            );
-            rotate(w, world)
-        })
+        // Q · R(n̄, α) · c = Q c + sin α · Q (n̄ × c) + (1 − cos α) · Q (n̄ × (n̄ × c)): only the
+        // two coefficients vary, so the constant vectors stay plain numbers.
+        let (s, v) = (alpha.sin(), -alpha.cos() + 1.0);
+        let world = self.rest.map(|c| {
+            let nc = cross(self.hinge_axis, c);
+            let nnc = cross(self.hinge_axis, nc);
+            let [a, b, d] = [c, nc, nnc].map(|x| mat_vec(q, x));
+            std::array::from_fn(|i| s * b[i] + v * d[i] + a[i])
+        });
+        rotate_each(w, world)
     }
+}
+
+/// Q x with Q stored as columns.
+fn mat_vec(q: &Frame, x: [f64; 3]) -> [f64; 3] {
+    std::array::from_fn(|i| q[0][i] * x[0] + q[1][i] * x[1] + q[2][i] * x[2])
 }

@@ -6,8 +6,9 @@ use super::frames::Joined;
 use super::nodes::Numbered;
 use crate::energy::registry::Terms;
 use crate::energy::{
-    bend::Bend, frame_bend::FrameBend, frame_twist::FrameTwist, joint_rotation::JointRotation,
-    joint_translation::JointTranslation, stretch::Stretch, twist::Twist, Term,
+    bend::Bend, frame_bend::FrameBend, frame_bend_twist::FrameBendTwist, frame_twist::FrameTwist,
+    joint_rotation::JointRotation, joint_translation::JointTranslation, stretch::Stretch,
+    twist::Twist, Term,
 };
 use crate::math::vec::cross;
 use crate::network::info::RodInfo;
@@ -251,7 +252,6 @@ fn port_stencils(
             };
             let y = FrameTwist::reduced(&bend.gather(&state.q));
             bend.rest = bend.curvatures::<f64>(state, &y);
-            terms.frame_bend.push(bend);
             let slot = state.twist_prev.len();
             state.twist_prev.push(0.0);
             let mut tw = FrameTwist {
@@ -266,7 +266,7 @@ fn port_stencils(
             };
             state.twist_prev[slot] = tw.reference_twist::<f64>(state, &y);
             tw.rest = tw.twist::<f64>(state, &y);
-            terms.frame_twist.push(tw);
+            terms.frame_bend_twist.push(FrameBendTwist::new(bend, tw));
         }
     }
 }

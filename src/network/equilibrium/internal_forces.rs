@@ -135,19 +135,12 @@ fn cuts(net: &Network) -> Vec<Cut> {
         let end = usize::from(sign < 0.0);
         cuts[edge].add(scalef(along, sign), scalef(slice3(&g, 3), sign), g[6], end);
     };
-    for f in &m.terms.frame_bend {
+    for f in &m.terms.frame_bend_twist {
+        let b = &f.bend;
         half(
-            &f.vars,
-            f.edge,
-            f.sign,
-            f.derivatives(&st, &f.gather(&st.q)).g,
-        );
-    }
-    for f in &m.terms.frame_twist {
-        half(
-            &f.vars,
-            f.edge,
-            f.sign,
+            &b.vars,
+            b.edge,
+            b.sign,
             f.derivatives(&st, &f.gather(&st.q)).g,
         );
     }

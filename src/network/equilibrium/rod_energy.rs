@@ -52,13 +52,16 @@ impl TermVisitor for ByRod<'_> {
             let Some(r) = self.out.get_mut(self.rod_of_edge[e]) else {
                 continue;
             };
-            let slot = match E::CATEGORY {
-                Category::Stretch => &mut r.stretch,
-                Category::Bend => &mut r.bend,
-                Category::Twist => &mut r.twist,
-                Category::Joints | Category::Supports | Category::External => continue,
-            };
-            *slot += t.energy(self.st);
+            let mut e = [0.0; 2];
+            t.energies_by_category(self.st, &mut e[..E::CATEGORIES.len()]);
+            for (c, e) in E::CATEGORIES.iter().zip(e) {
+                match c {
+                    Category::Stretch => r.stretch += e,
+                    Category::Bend => r.bend += e,
+                    Category::Twist => r.twist += e,
+                    Category::Joints | Category::Supports | Category::External => {}
+                }
+            }
         }
     }
 }

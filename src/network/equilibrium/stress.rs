@@ -77,7 +77,7 @@ fn strains(net: &Network) -> Vec<Vec<f64>> {
             stencil_strain(&info.section, k_now, b.rest, b.voronoi),
         );
     }
-    for f in &m.terms.frame_bend {
+    for f in m.terms.frame_bend_twist.iter().map(|f| &f.bend) {
         let (r, k) = at_edge[f.edge];
         let Some(info) = net.rods.get(r) else {
             continue;

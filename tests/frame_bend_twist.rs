@@ -1,0 +1,259 @@
+//! The fused half-stencil kernel (`FrameBendTwist`) against finite differences and against the
+//! separate `FrameBend` and `FrameTwist` terms it replaces in assembly, at bent, twisted and
+//! near-singular states: nearly antiparallel frame and edge tangents, reference twist at ±π
+//! (where the raw angle wraps), large frame increments and hinge angles, both edge orientations.
+//! Finite differences as in energy_fd.rs: step 1e-6, relative error 1e-6.
+
+mod common;
+
+use common::Rng;
+use rodnet::energy::{
+    frame_bend::FrameBend, frame_bend_twist::FrameBendTwist, frame_twist::FrameTwist, Category,
+    Term,
+};
+use rodnet::math::vec::*;
+use rodnet::math::HD;
+use rodnet::rod::frames::EdgeRef;
+use rodnet::variables::{FrameRef, Port, State};
+
+const H: f64 = 1e-6;
+const TOL: f64 = 1e-6;
+const PI: f64 = std::f64::consts::PI;
+
+/// One half-stencil configuration: the state (edge 0, frame 0, twist slot 0), the fused term
+/// and its local variables (x_vertex, x_other, θ, ω, α).
+struct Case {
+    st: State,
+    term: FrameBendTwist,
+    x: [f64; 11],
+    what: String,
+}
+
+fn random_rotation(rng: &mut Rng) -> Frame {
+    frame_rotate(
+        rng.vec3(2.0),
+        &[[1.0, 0.0, 0.0], [0.0, 1.0, 0.0], [0.0, 0.0, 1.0]],
+    )
+}
+
+/// Turns a frame about its third column by `beta`.
+fn turn_about_tangent(f: Frame, beta: f64) -> Frame {
+    [
+        rotate_axis(f[2], beta, f[0]),
+        rotate_axis(f[2], beta, f[1]),
+        f[2],
+    ]
+}
+
+/// A half-stencil whose edge leaves the frame tangent at angle `phi`, with frame increment of
+/// size `wmag`, seeded so that every parameter is generic.
+fn case(rng: &mut Rng, phi: f64, wmag: f64, sign: f64, what: &str) -> Case {
+    let fr = random_rotation(rng);
+    let te = normalize(add(scalef(fr[2], phi.cos()), scalef(fr[0], phi.sin())));
+    let xv = rng.vec3(1.0);
+    let xo = add(xv, scalef(te, rng.range(0.5, 1.5)));
+    let edge_t = scalef(te, sign);
+    let tr = normalize(add(edge_t, rng.vec3(0.3)));
+    let st = State {
+        q: vec![],
+        edges: vec![EdgeRef {
+            t: tr,
+            u: rotate_axis(tr, rng.range(-3.0, 3.0), any_perpendicular(tr)),
+        }],
+        frames: vec![FrameRef {
+            rotation: random_rotation(rng),
+            accumulated: rng.vec3(1.0),
+        }],
+        twist_prev: vec![0.0],
+        load_factor: 0.7,
+    };
+    let port = Port {
+        frame: 0,
+        rest: random_rotation(rng),
+        hinge_axis: normalize(rng.vec3(1.0)),
+    };
+    let w = scalef(normalize(rng.vec3(1.0)), wmag);
+    let x = [
+        xv[0],
+        xv[1],
+        xv[2],
+        xo[0],
+        xo[1],
+        xo[2],
+        rng.range(-5.0, 5.0),
+        w[0],
+        w[1],
+        w[2],
+        rng.range(-1.0, 1.0),
+    ];
+    let vars = std::array::from_fn(|i| i);
+    let voronoi = rng.range(0.2, 0.8);
+    let bend = FrameBend {
+        vars,
+        port,
+        edge: 0,
+        sign,
+        rest: [
+            [rng.range(-0.5, 0.5), rng.range(-0.5, 0.5)],
+            [rng.range(-0.5, 0.5), rng.range(-0.5, 0.5)],
+        ],
+        voronoi,
+        ei: [rng.range(0.5, 2.0), rng.range(0.5, 2.0)],
+    };
+    let twist = FrameTwist {
+        vars,
+        port,
+        edge: 0,
+        sign,
+        slot: 0,
+        rest: rng.range(-1.0, 1.0),
+        voronoi,
+        gj: rng.range(0.5, 2.0),
+    };
+    let mut c = Case {
+        st,
+        term: FrameBendTwist::new(bend, twist),
+        x,
+        what: format!("{what}, |ω| = {wmag}, sign {sign}"),
+    };
+    // Unwrapped one turn up, so the twist energy sees the unwrapping.
+    c.st.twist_prev[0] = reference_twist(&c) + std::f64::consts::TAU;
+    c
+}
+
+fn reference_twist(c: &Case) -> f64 {
+    c.term
+        .twist
+        .reference_twist::<f64>(&c.st, &FrameTwist::reduced(&c.x))
+}
+
+/// Turns the port's rest frame about its tangent so that the raw reference twist becomes
+/// `target`, and remembers `target` as the last accepted twist. The twist is affine in the turn
+/// angle with slope ±1 (by the edge's orientation), measured by a trial turn.
+fn set_reference_twist(c: &mut Case, target: f64) {
+    c.st.twist_prev[0] = target;
+    let turn = |c: &mut Case, beta: f64| {
+        for p in [&mut c.term.bend.port, &mut c.term.twist.port] {
+            p.rest = turn_about_tangent(p.rest, beta);
+        }
+    };
+    let raw = reference_twist(c);
+    turn(c, 0.1);
+    let slope = (reference_twist(c) - raw) / 0.1;
+    turn(c, (target - raw) / slope - 0.1);
+    let now = reference_twist(c);
+    assert!((now - target).abs() < 1e-9, "{now} vs {target}");
+}
+
+fn cases() -> Vec<Case> {
+    let mut rng = Rng::new(17);
+    let mut out = Vec::new();
+    let angles = [
+        (0.3, "bent"),
+        (1.7, "strongly bent"),
+        (175.0 * PI / 180.0, "nearly antiparallel tangents (175°)"),
+        (1e-9, "straight"),
+    ];
+    for (phi, what) in angles {
+        for (wmag, sign) in [(0.05, 1.0), (0.8, -1.0), (0.05, -1.0), (2.5, 1.0)] {
+            out.push(case(&mut rng, phi, wmag, sign, what));
+        }
+    }
+    for (target, what) in [
+        (PI - 1e-3, "reference twist near π"),
+        (-PI + 1e-3, "reference twist near −π"),
+        (PI - 1e-9, "reference twist at the wrap (FD steps cross it)"),
+    ] {
+        for sign in [1.0, -1.0] {
+            let mut c = case(&mut rng, 0.9, 0.6, sign, what);
+            set_reference_twist(&mut c, target);
+            out.push(c);
+        }
+    }
+    out
+}
+
+fn max_abs<'a>(v: impl IntoIterator<Item = &'a f64>) -> f64 {
+    v.into_iter().fold(1e-300f64, |m, x| m.max(x.abs()))
+}
+
+#[test]
+fn fused_kernel_matches_finite_differences() {
+    for c in cases() {
+        let (t, st, x) = (&c.term, &c.st, c.x);
+        let d = t.derivatives(st, &x);
+        assert!(
+            (d.v - t.eval::<f64>(st, &x)).abs() <= 1e-12 * d.v.abs(),
+            "{}",
+            c.what
+        );
+        let h = d.hessian();
+        let (gmax, hmax) = (max_abs(&d.g), max_abs(h.iter().flatten()));
+        let (mut gerr, mut herr) = (0.0f64, 0.0f64);
+        for i in 0..11 {
+            let (mut xp, mut xm) = (x, x);
+            xp[i] += H;
+            xm[i] -= H;
+            let fd = (t.eval::<f64>(st, &xp) - t.eval::<f64>(st, &xm)) / (2.0 * H);
+            gerr = gerr.max((fd - d.g[i]).abs() / gmax);
+            let (gp, gm) = (t.derivatives(st, &xp).g, t.derivatives(st, &xm).g);
+            for j in 0..11 {
+                herr = herr.max(((gp[j] - gm[j]) / (2.0 * H) - h[j][i]).abs() / hmax);
+            }
+        }
+        assert!(gerr < TOL, "{}: gradient relative error {gerr:.3e}", c.what);
+        assert!(herr < TOL, "{}: Hessian relative error {herr:.3e}", c.what);
+        assert!(h.iter().flatten().all(|v| v.is_finite()), "{}", c.what);
+    }
+}
+
+/// The fused derivatives are the separate terms' (each through its own assembly path), and
+/// its energies by category, its generic evaluation and its remembered twist are theirs too.
+#[test]
+fn fused_kernel_equals_the_separate_terms() {
+    for c in cases() {
+        let (t, st, x) = (&c.term, &c.st, c.x);
+        let b = t.bend.derivatives(st, &x);
+        let w = t.twist.derivatives(st, &x);
+        let f = t.derivatives(st, &x);
+        let sum = b + w;
+        let (hs, hf) = (sum.hessian(), f.hessian());
+        let scale = max_abs(hs.iter().flatten().chain(&sum.g));
+        assert!((f.v - sum.v).abs() <= 1e-12 * sum.v.abs(), "{}", c.what);
+        for i in 0..11 {
+            assert!(
+                (f.g[i] - sum.g[i]).abs() <= 1e-12 * scale,
+                "{}: g{i} {} vs {}",
+                c.what,
+                f.g[i],
+                sum.g[i]
+            );
+            for j in 0..11 {
+                assert!(
+                    (hf[i][j] - hs[i][j]).abs() <= 1e-12 * scale,
+                    "{}: h{i}{j} {} vs {}",
+                    c.what,
+                    hf[i][j],
+                    hs[i][j]
+                );
+            }
+        }
+        let generic = t.eval(st, &HD::<11>::vars(&x));
+        assert!((generic.v - f.v).abs() <= 1e-12 * f.v.abs(), "{}", c.what);
+        for i in 0..11 {
+            assert!((generic.g[i] - f.g[i]).abs() <= 1e-12 * scale, "{}", c.what);
+        }
+        let mut st_q = st.clone();
+        st_q.q = x.to_vec();
+        let mut parts = [0.0; 2];
+        t.energies_by_category(&st_q, &mut parts);
+        assert_eq!(
+            FrameBendTwist::CATEGORIES,
+            [Category::Bend, Category::Twist]
+        );
+        let (eb, et) = (t.bend.energy(&st_q), t.twist.energy(&st_q));
+        assert!((parts[0] - eb).abs() <= 1e-12 * eb.abs(), "{}", c.what);
+        assert!((parts[1] - et).abs() <= 1e-12 * et.abs(), "{}", c.what);
+        assert_eq!(t.remembered(&st_q), t.twist.remembered(&st_q), "{}", c.what);
+    }
+}
