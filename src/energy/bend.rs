@@ -67,7 +67,7 @@ impl Bend {
     }
 
     /// Energy from the projections and the two angles.
-    fn energy_of<T: Real>(&self, p: &[T; 4], theta: [T; 2]) -> T {
+    pub(crate) fn energy_of<T: Real>(&self, p: &[T; 4], theta: [T; 2]) -> T {
         let k = self.material_curvatures(p, theta);
         let mut e = T::cst(0.0);
         for j in 0..2 {

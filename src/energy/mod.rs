@@ -3,6 +3,7 @@
 //! `eval::<HD<N>>`.
 
 pub mod bend;
+pub mod bend_twist;
 pub mod frame_bend;
 pub mod frame_bend_twist;
 pub mod frame_twist;

@@ -4,10 +4,9 @@
 //! goes through [`Terms::visit`]. Adding a term is its file plus one line in `term_kinds!`.
 
 use super::{
-    bend::Bend, frame_bend_twist::FrameBendTwist, joint_rotation::JointRotation,
+    bend_twist::BendTwist, frame_bend_twist::FrameBendTwist, joint_rotation::JointRotation,
     joint_translation::JointTranslation, point_load::PointLoad,
-    rotational_spring::RotationalSpring, spring::Spring, stretch::Stretch, torque::Torque,
-    twist::Twist, Term,
+    rotational_spring::RotationalSpring, spring::Spring, stretch::Stretch, torque::Torque, Term,
 };
 
 /// Something done to every kind of term in turn; `kind` is the kind's index in [`Terms::NAMES`].
@@ -43,8 +42,7 @@ macro_rules! term_kinds {
 
 term_kinds! {
     stretch: Stretch = 6,
-    bend: Bend = 11,
-    twist: Twist = 11,
+    bend_twist: BendTwist = 11,
     frame_bend_twist: FrameBendTwist = 11,
     joint_rotation: JointRotation = 6,
     joint_translation: JointTranslation = 6,

@@ -28,7 +28,7 @@ pub struct Twist {
 
 impl Twist {
     /// Reference twist between two θ = 0 frames along the stencil, unwrapped.
-    fn reference_twist_of<T: Real>(&self, st: &State, dots: &FrameDots<T>) -> T {
+    pub(crate) fn reference_twist_of<T: Real>(&self, st: &State, dots: &FrameDots<T>) -> T {
         unwrap_angle(dots.reference_twist(), st.twist_prev[self.slot])
     }
 
@@ -42,7 +42,7 @@ impl Twist {
     }
 
     /// Energy from the reference twist and the two angles.
-    fn energy_of<T: Real>(&self, reference: T, theta: [T; 2]) -> T {
+    pub(crate) fn energy_of<T: Real>(&self, reference: T, theta: [T; 2]) -> T {
         let m = reference + theta[1] * self.signs[1] - theta[0] * self.signs[0];
         let d = m - self.rest;
         d * d * (0.5 * self.gj / self.voronoi)

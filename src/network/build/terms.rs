@@ -6,9 +6,9 @@ use super::frames::Joined;
 use super::nodes::Numbered;
 use crate::energy::registry::Terms;
 use crate::energy::{
-    bend::Bend, frame_bend::FrameBend, frame_bend_twist::FrameBendTwist, frame_twist::FrameTwist,
-    joint_rotation::JointRotation, joint_translation::JointTranslation, stretch::Stretch,
-    twist::Twist, Term,
+    bend::Bend, bend_twist::BendTwist, frame_bend::FrameBend, frame_bend_twist::FrameBendTwist,
+    frame_twist::FrameTwist, joint_rotation::JointRotation, joint_translation::JointTranslation,
+    stretch::Stretch, twist::Twist, Term,
 };
 use crate::math::vec::cross;
 use crate::network::info::RodInfo;
@@ -84,7 +84,6 @@ impl Stencil {
         };
         let y = Twist::reduced(&bend.gather(&state.q));
         bend.rest = bend.curvatures::<f64>(state, &y);
-        terms.bend.push(bend);
         let slot = state.twist_prev.len();
         state.twist_prev.push(0.0);
         // Twist compliance in series over the two half-edges.
@@ -100,7 +99,7 @@ impl Stencil {
         };
         state.twist_prev[slot] = tw.reference_twist::<f64>(state, &y);
         tw.rest = tw.twist::<f64>(state, &y);
-        terms.twist.push(tw);
+        terms.bend_twist.push(BendTwist::new(bend, tw));
     }
 }
 
@@ -193,7 +192,7 @@ fn twist_gauge(
     for p in &joined.table.ports {
         no_gauge[p.rod] = true;
     }
-    for b in &terms.bend {
+    for b in terms.bend_twist.iter().map(|s| &s.bend) {
         if b.rest.iter().flatten().any(|v| v.abs() >= 1e-12) {
             no_gauge[net.edge_rod[b.edges[0]]] = true;
         }

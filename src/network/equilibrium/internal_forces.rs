@@ -113,20 +113,13 @@ fn cuts(net: &Network) -> Vec<Cut> {
             );
         }
     };
-    for b in &m.terms.bend {
+    for s in &m.terms.bend_twist {
+        let b = &s.bend;
         stencil(
             &b.vars,
             b.edges,
             b.signs,
-            b.derivatives(&st, &b.gather(&st.q)).g,
-        );
-    }
-    for t in &m.terms.twist {
-        stencil(
-            &t.vars,
-            t.edges,
-            t.signs,
-            t.derivatives(&st, &t.gather(&st.q)).g,
+            s.derivatives(&st, &s.gather(&st.q)).g,
         );
     }
     // Half-stencils (x_vertex, x_other, θ, ω, α): sign +1 when the rod edge leaves the vertex.

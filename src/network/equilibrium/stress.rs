@@ -64,7 +64,7 @@ fn strains(net: &Network) -> Vec<Vec<f64>> {
             *x = x.max(v);
         }
     };
-    for b in &m.terms.bend {
+    for b in m.terms.bend_twist.iter().map(|s| &s.bend) {
         // The stencil's vertex is where its outgoing edge starts.
         let (r, k) = at_edge[b.edges[1]];
         let Some(info) = net.rods.get(r) else {

@@ -1,0 +1,95 @@
+//! Bending and twisting at a rod's interior vertex in one pass: the sum of [`Bend`] and
+//! [`Twist`] of the same stencil, which build the same two edges' reference frames and the same
+//! products of them ([`FrameDots`]).
+//!
+//! The frames are differentiated in their own edge vectors, the products and the five
+//! intermediates (κb's projections, the reference twist) in the 6 edge coordinates, and the
+//! energy in (intermediates, θ⁰, θ¹); [`compose`] chains them exactly, and one [`super::expand`]
+//! returns to the 11 stencil variables. The energies are still reported apart, bending under
+//! [`Category::Bend`] and twisting under [`Category::Twist`].
+
+use super::bend::{Bend, STENCIL_MAP};
+use super::twist::Twist;
+use super::{Category, Term};
+use crate::math::dual::{compose, separable_dot};
+use crate::math::vec::dot;
+use crate::math::{Real, HD};
+use crate::rod::frames::{oriented_reference_frame, FrameDots, RefFrame};
+use crate::variables::State;
+
+/// The bending and twisting terms of one stencil (same variables, edges and signs).
+#[derive(Debug, Clone)]
+pub struct BendTwist {
+    pub bend: Bend,
+    pub twist: Twist,
+}
+
+impl BendTwist {
+    pub fn new(bend: Bend, twist: Twist) -> Self {
+        debug_assert!(bend.vars == twist.vars && bend.edges == twist.edges);
+        BendTwist { bend, twist }
+    }
+
+    /// Edge `j`'s θ = 0 frame from its vector along the stencil.
+    fn frame<T: Real>(&self, st: &State, j: usize, along: [T; 3]) -> RefFrame<T> {
+        let b = &self.bend;
+        oriented_reference_frame(&st.edges[b.edges[j]], b.signs[j], along)
+    }
+
+    /// (bending, twisting) energy at the local variables `x`.
+    pub fn energies<T: Real>(&self, st: &State, x: &[T; 11]) -> [T; 2] {
+        let y = super::reduce(&STENCIL_MAP, x);
+        let f0 = self.frame(st, 0, [y[0], y[1], y[2]]);
+        let f1 = self.frame(st, 1, [y[3], y[4], y[5]]);
+        let dots = FrameDots::new(&f0, &f1, |a, b| dot(*a, *b));
+        let theta = [y[6], y[7]];
+        [
+            self.bend.energy_of(&dots.binormal_projections(), theta),
+            self.twist
+                .energy_of(self.twist.reference_twist_of(st, &dots), theta),
+        ]
+    }
+}
+
+impl Term<11> for BendTwist {
+    /// The category of the first part; see [`Term::CATEGORIES`].
+    const CATEGORY: Category = Category::Bend;
+    const CATEGORIES: &'static [Category] = &[Category::Bend, Category::Twist];
+    fn vars(&self) -> &[usize; 11] {
+        &self.bend.vars
+    }
+    fn edge(&self) -> Option<usize> {
+        Some(self.bend.edges[0])
+    }
+    fn remembered(&self, st: &State) -> Option<(usize, f64)> {
+        self.twist.remembered(st)
+    }
+    fn eval<T: Real>(&self, st: &State, x: &[T; 11]) -> T {
+        let [b, t] = self.energies(st, x);
+        b + t
+    }
+    fn energies_by_category(&self, st: &State, out: &mut [f64]) {
+        let [b, t] = self.energies::<f64>(st, &self.gather(&st.q));
+        out[0] += b;
+        out[1] += t;
+    }
+    fn derivatives(&self, st: &State, x: &[f64; 11]) -> HD<11> {
+        let y = super::reduce(&STENCIL_MAP, x);
+        let frame = |j: usize| {
+            self.frame(
+                st,
+                j,
+                HD::<3>::vars(&[y[3 * j], y[3 * j + 1], y[3 * j + 2]]),
+            )
+        };
+        let dots = FrameDots::<HD<6>>::new(&frame(0), &frame(1), separable_dot::<3, 3, 6>);
+        let p = dots.binormal_projections();
+        let r = self.twist.reference_twist_of(st, &dots);
+        let o = HD::<7>::vars(&[p[0].v, p[1].v, p[2].v, p[3].v, r.v, y[6], y[7]]);
+        let theta = [o[5], o[6]];
+        let energy = self.bend.energy_of(&[o[0], o[1], o[2], o[3]], theta)
+            + self.twist.energy_of(o[4], theta);
+        let inner = [p[0], p[1], p[2], p[3], r];
+        super::expand(&STENCIL_MAP, &compose::<6, 5, 7, 8>(&inner, &energy))
+    }
+}
