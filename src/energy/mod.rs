@@ -101,6 +101,7 @@ pub fn reduce<T: Real, const N: usize, const M: usize>(
 }
 
 /// Derivatives in x from derivatives in y = A x.
+#[inline(always)]
 pub fn expand<const N: usize, const M: usize>(map: &[[(usize, f64); 2]; M], r: &HD<M>) -> HD<N> {
     let mut out = HD::<N>::cst(r.v);
     let hy = r.hessian();
