@@ -1,9 +1,9 @@
 //! The fused bend-and-twist kernels (`FrameBendTwist` at a vertex frame, `BendTwist` at a rod's
 //! interior vertex) against finite differences and against the separate terms they replace in
 //! assembly, at bent, twisted and near-singular states: nearly antiparallel tangents (175°),
-//! reference twist at ±π (where the raw angle wraps), large frame increments and hinge angles,
-//! both edge orientations. Finite differences as in energy_fd.rs: step 1e-6, relative error
-//! 1e-6.
+//! reference twist at ±π (where the raw angle wraps), frame increments of zero (as at every
+//! committed iterate), small and large, hinge angles, both edge orientations. Finite
+//! differences as in energy_fd.rs: step 1e-6, relative error 1e-6.
 
 mod common;
 
@@ -193,7 +193,13 @@ fn frame_cases() -> Vec<Case<FrameBendTwist>> {
     let mut rng = Rng::new(17);
     let mut out = Vec::new();
     for (phi, what) in ANGLES {
-        for (wmag, sign) in [(0.05, 1.0), (0.8, -1.0), (0.05, -1.0), (2.5, 1.0)] {
+        for (wmag, sign) in [
+            (0.05, 1.0),
+            (0.8, -1.0),
+            (0.0, -1.0),
+            (2.5, 1.0),
+            (0.0, 1.0),
+        ] {
             out.push(frame_case(&mut rng, phi, wmag, sign, what));
         }
     }

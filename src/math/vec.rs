@@ -138,7 +138,17 @@ pub fn rotate<T: Real>(w: V3<T>, v: V3<T>) -> V3<T> {
 
 /// [`rotate`] of several vectors by the same ω (the coefficients are computed once).
 pub fn rotate_each<T: Real, const K: usize>(w: V3<T>, vs: [V3<T>; K]) -> [V3<T>; K] {
-    let (a, b) = rodrigues_coeffs(dot(w, w));
+    let t2 = dot(w, w);
+    if t2.val() == 0.0 {
+        // At ω = 0 (every committed iterate: increments are folded into the frames) A − 1 and
+        // B − ½ are O(|ω|²) and multiply terms of order ≥ 1 in ω, so with A = 1, B = ½ the
+        // result differs at third order only: value, gradient and Hessian are exact.
+        return vs.map(|v| {
+            let wv = cross(w, v);
+            add(add(v, wv), scalef(cross(w, wv), 0.5))
+        });
+    }
+    let (a, b) = rodrigues_coeffs(t2);
     vs.map(|v| {
         let wv = cross(w, v);
         let wwv = cross(w, wv);
