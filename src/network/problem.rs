@@ -9,9 +9,13 @@ use crate::network::{Network, RodInfo};
 use crate::solver::{NewtonProblem, NewtonReport, NewtonSettings};
 use crate::variables::{State, VarKind};
 
-/// Gauss–Newton passes of the length projection after a secant prediction on a buckling path:
-/// the second leaves length errors of order (first's)², which the Newton iterations absorb.
-const PREDICTOR_PROJECTIONS: usize = 2;
+/// Most Gauss–Newton passes of the length projection after a secant prediction on a buckling
+/// path. The passes go on while they reduce the largest relative length error, to round-off:
+/// with EA/EI ≈ (L/r)², a length error the Newton iterations are left to absorb costs them more
+/// than the passes (each a factorization of the edge–edge matrix AAᵀ, far smaller than H).
+const PREDICTOR_PROJECTIONS: usize = 50;
+/// Largest relative length error at which the predictor's projection stops.
+const PREDICTOR_LENGTH_ERROR: f64 = 1e-12;
 
 pub struct NetworkProblem<'m> {
     pub model: &'m mut Model,
@@ -160,9 +164,24 @@ impl NewtonProblem for NetworkProblem<'_> {
             .projector
             .get_or_insert_with(|| Projector::new(m.unknowns(), &m.edge_nodes));
         let mut c = vec![0.0; m.n_free];
-        for _ in 0..PREDICTOR_PROJECTIONS {
+        let saved = self.model.state.q.clone();
+        let mut first = None;
+        for pass in 0..=PREDICTOR_PROJECTIONS {
             let m = &mut *self.model;
-            if !proj.restore_lengths(m.unknowns(), &m.edge_nodes, &m.state.q, &lengths, &mut c) {
+            let u = m.unknowns();
+            let err = match proj.restore_lengths(u, &m.edge_nodes, &m.state.q, &lengths, &mut c) {
+                Some(err) if err > PREDICTOR_LENGTH_ERROR => err,
+                _ => break,
+            };
+            // Far from the lengths (supports moved by a large fraction of an edge) the
+            // linearized passes wander before they converge; passes that end worse than they
+            // started are undone.
+            let start = *first.get_or_insert(err);
+            if pass == PREDICTOR_PROJECTIONS {
+                if err > start {
+                    m.state.q.copy_from_slice(&saved);
+                    m.commit();
+                }
                 break;
             }
             m.displace(&c, 1.0);

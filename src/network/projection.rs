@@ -95,8 +95,9 @@ impl Projector {
     }
 
     /// Moves the free nodes by the smallest displacement that brings every edge back to the
-    /// length given in `lengths` to first order (one Gauss–Newton step of the projection);
-    /// returns false when nothing was moved.
+    /// length given in `lengths` to first order (one Gauss–Newton step of the projection).
+    /// Returns the largest relative length error |l − lengths|/l before the step, or None when
+    /// nothing was moved (every error at round-off, or AAᵀ not factored).
     pub fn restore_lengths(
         &mut self,
         u: Unknowns,
@@ -104,23 +105,24 @@ impl Projector {
         q: &[f64],
         lengths: &[f64],
         c: &mut [f64],
-    ) -> bool {
+    ) -> Option<f64> {
         let ne = edge_nodes.len();
         let mut tn = vec![[0.0; 3]; ne];
         let mut s = vec![0.0; ne];
-        let mut any = false;
+        let mut worst = 0.0_f64;
         for (e, &[a, b]) in edge_nodes.iter().enumerate() {
             let ev = sub(u.layout.position(q, b), u.layout.position(q, a));
             let l = norm(ev);
             s[e] = l - lengths[e];
             tn[e] = scalef(ev, 1.0 / l);
-            any |= s[e].abs() > 1e-14 * l;
+            worst = worst.max(s[e].abs() / l);
         }
         c.iter_mut().for_each(|v| *v = 0.0);
-        if !any {
-            return false;
+        if !worst.is_finite() || worst <= 1e-14 {
+            return None;
         }
         self.min_norm(u, edge_nodes, &tn, &mut s, c)
+            .then_some(worst)
     }
 
     /// c = −Aᵀ(AAᵀ + δI)⁻¹ s, A the rows t'_e·(c_b − c_a) over free unknowns.

@@ -209,11 +209,20 @@ impl Path {
                     p.predict(snap, factor, self.load(next));
                 }
                 Some(_) => p.set_continuation(self.load(next)),
-                None => {
-                    if let Err(m) = st.tangent_predict(p, self.load(self.lam), self.load(next)) {
-                        return Outcome::Mechanism(m);
+                None => match st.tangent_predict(p, self.load(self.lam), self.load(next)) {
+                    Err(m) => return Outcome::Mechanism(m),
+                    // Past a bifurcation the linear response is the symmetric saddle's; where it
+                    // does not even hold over the increment, Newton from the lifted prediction
+                    // fails (3-6 iterations per attempt on the hemisphere footprint and the
+                    // square gridshell): the increment is cut before iterating.
+                    Ok(false) if self.root_path && self.inc > MIN_INCREMENT * 1.0001 => {
+                        p.restore(&saved);
+                        st.report.retries += 1;
+                        self.inc = (0.25 * self.inc).max(MIN_INCREMENT);
+                        continue;
                     }
-                }
+                    Ok(_) => {}
+                },
             }
             let minimal = self.inc <= MIN_INCREMENT * 1.0001;
             let remaining = s

@@ -15,13 +15,32 @@ impl Newton {
     ///
     /// No shortcut through `near_singular` here: on a shifted factor a zero mode grows only by
     /// 1/τ, which the probe's threshold cannot tell from a stiff one when τ ≥ 1e-10 of the scale.
+    ///
+    /// A mode counts as zero only while its eigenvalue is not resolved from zero
+    /// (`spectrum::zero_band`): a slender rod's softest bending modes fall below 1e-10 of the
+    /// scale (the stretch stiffness) at fine discretizations, and a clamped cantilever with
+    /// r/L = 1e-3 was called neutral from 320 edges on.
     pub(super) fn gauge_modes_only<P: super::NewtonProblem>(&mut self, p: &mut P) -> bool {
-        let zero: Vec<Vec<f64>> = self
-            .lowest_modes(4)
-            .into_iter()
-            .filter(|(l, _)| l.abs() < 1e-10)
-            .map(|(_, v)| v)
-            .collect();
+        let scale = self.scaled_diagonal().max(f64::MIN_POSITIVE);
+        let w = &self.weights;
+        let gradient = (0..self.g.len())
+            .map(|i| self.g[i] * self.g[i] / w[i])
+            .sum::<f64>()
+            .sqrt();
+        let pairs = self.lowest_modes(4);
+        let mut hv = vec![0.0; self.g.len()];
+        let mut zero = Vec::new();
+        for (l, u) in pairs {
+            self.chol.multiply(&u, &mut hv);
+            let w = &self.weights;
+            // ‖Hu − λWu‖ in the W⁻¹ norm, λ here relative to the scale.
+            let r2: f64 = (0..hv.len())
+                .map(|i| (hv[i] - l * scale * w[i] * u[i]).powi(2) / w[i])
+                .sum();
+            if l.abs() * scale < super::spectrum::zero_band(r2.sqrt(), gradient, scale) {
+                zero.push(u);
+            }
+        }
         let gauge = zero.is_empty() || p.gauge_only(&zero);
         self.report.zero_modes = if gauge { 0 } else { zero.len() };
         gauge

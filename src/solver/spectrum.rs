@@ -56,7 +56,7 @@ impl Spectrum {
 /// scale being the stretch stiffness (∝ n) and the soft modes' eigenvalues ∝ 1/n: a clamped
 /// shallow arch's inverted state, n = 64, near its stability threshold (λ ≈ 1e-11 of the scale,
 /// residual 1e-13; docs/stability.md).
-fn zero_band(residual: f64, gradient: f64, scale: f64) -> f64 {
+pub(super) fn zero_band(residual: f64, gradient: f64, scale: f64) -> f64 {
     (2.0 * residual)
         .max(10.0 * gradient)
         .max(1e-13 * scale)

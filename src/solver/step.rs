@@ -64,6 +64,9 @@ impl Newton {
     /// tangent predictor there leads a strut shortened past buckling onto its straight saddle;
     /// docs/design.md).
     ///
+    /// Returns whether the linear response held over the increment: taken whole (not cut by
+    /// the rotation limit of `max_step`) and lowering the energy.
+    ///
     /// With the Hessian at `lam` factored, this is also where zero-stiffness modes of the start
     /// are looked for: a mechanism that the loads excite is returned as Err with its
     /// description (`NewtonProblem::mechanism`).
@@ -72,13 +75,13 @@ impl Newton {
         p: &mut P,
         lam: f64,
         next: f64,
-    ) -> Result<(), String> {
+    ) -> Result<bool, String> {
         let n = self.g.len();
         if self.qp.is_some() {
             // The linear response ignores contact and bounds: it could jump through an obstacle.
             // (Nor are mechanisms looked for: contact is what holds a rod lying on a floor.)
             p.set_continuation(next);
-            return Ok(());
+            return Ok(true);
         }
         p.set_continuation(lam);
         let e0 = p.assemble(&mut self.g, Some(&mut self.chol.values));
@@ -101,7 +104,7 @@ impl Newton {
         }
         p.set_continuation(next);
         if shift.is_none() || n == 0 {
-            return Ok(());
+            return Ok(true);
         }
         let e1 = p.assemble(&mut self.d, None);
         for i in 0..n {
@@ -110,13 +113,14 @@ impl Newton {
         self.chol.solve(&mut self.d);
         let alpha = p.max_step(&self.d).min(1.0);
         let e = p.trial_energy(&self.d, alpha);
-        if e.is_finite() && e < e1 {
+        let lowered = e.is_finite() && e < e1;
+        if lowered {
             p.accept(&self.d, alpha);
         }
         if !p.bias().is_empty() {
             self.lift(p);
         }
-        Ok(())
+        Ok(lowered && alpha == 1.0)
     }
 
     /// The first prediction of a buckling path (`buckle_toward`): the linear response leaves a
