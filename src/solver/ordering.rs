@@ -8,8 +8,11 @@
 //! the smaller boundary (those with a neighbour on the other side), order both halves
 //! recursively and the separator last.
 
+use faer::sparse::linalg::cholesky::SymbolicCholesky;
+
 use super::linalg::SparseCholesky;
 use super::problem::NewtonProblem;
+use super::symbolic::analyse;
 
 /// Below this many unknowns a part is not split further.
 const LEAF: usize = 64;
@@ -162,31 +165,56 @@ impl Dissection<'_> {
     }
 }
 
-/// The sparse Cholesky of the problem's Hessian pattern, with the ordering `ordering` asks for.
+/// The sparse Cholesky of the problem's Hessian pattern, with the ordering `ordering` asks for,
+/// on the pattern's analysis made once per process ([`super::symbolic::analyse`]).
 pub(super) fn factorization<P: NewtonProblem>(
     p: &P,
     n: usize,
     pairs: &[(usize, usize)],
     ordering: Ordering,
 ) -> (SparseCholesky, Vec<usize>) {
+    let (symbolic, slots) =
+        analyse(n, pairs, ordering, || p.unknown_positions()).expect("symbolic Cholesky analysis");
+    (SparseCholesky::from_symbolic(symbolic), slots)
+}
+
+/// The symbolic factorization with the ordering `ordering` asks for: AMD below the size where
+/// the dissection is tried (or without `positions`), else the dissection, kept under `Auto`
+/// only if it saves enough fill over AMD. `analyse` makes the symbolic factorization of an
+/// elimination order (`None`: AMD). Returns the one chosen, its ordering, and the other one
+/// where both were made.
+pub(super) fn choose(
+    n: usize,
+    pairs: &[(usize, usize)],
+    ordering: Ordering,
+    positions: impl FnOnce() -> Option<Vec<[f64; 3]>>,
+    analyse: impl Fn(Option<&[usize]>) -> Option<SymbolicCholesky<usize>>,
+) -> Option<(
+    SymbolicCholesky<usize>,
+    Ordering,
+    Option<SymbolicCholesky<usize>>,
+)> {
     let try_nd = match ordering {
         Ordering::Amd => false,
         Ordering::NestedDissection => true,
         Ordering::Auto => n >= AUTO_MIN_UNKNOWNS,
     };
-    let Some(pts) = try_nd.then(|| p.unknown_positions()).flatten() else {
-        return SparseCholesky::new(n, pairs);
+    let Some(pts) = try_nd.then(positions).flatten() else {
+        return Some((analyse(None)?, Ordering::Amd, None));
     };
-    let nd = SparseCholesky::with_order(n, pairs, Some(&nested_dissection(n, pairs, &pts)));
+    let nd = analyse(Some(&nested_dissection(n, pairs, &pts)))?;
+    drop(pts);
     if ordering == Ordering::NestedDissection {
-        return nd;
+        return Some((nd, Ordering::NestedDissection, None));
     }
-    let amd = SparseCholesky::new(n, pairs);
-    if (nd.0.factor_nnz() as f64) < AUTO_FILL_RATIO * amd.0.factor_nnz() as f64 {
-        nd
-    } else {
-        amd
-    }
+    let amd = analyse(None)?;
+    Some(
+        if (nd.len_val() as f64) < AUTO_FILL_RATIO * amd.len_val() as f64 {
+            (nd, Ordering::NestedDissection, Some(amd))
+        } else {
+            (amd, Ordering::Amd, Some(nd))
+        },
+    )
 }
 
 /// The graph of an m × m grid Laplacian (upper-triangle pairs with the diagonal) and its
