@@ -7,7 +7,7 @@ use faer::sparse::linalg::cholesky::{SymbolicCholesky, SymbolicCholeskyRaw};
 use faer::Par;
 
 use super::ordering::Ordering;
-use super::symbolic::analyse;
+use super::symbolic::analyse_pattern;
 
 /// The cost of factoring one Hessian pattern the way [`super::solve`] will.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -48,14 +48,14 @@ struct Analysis {
 /// [`super::NewtonProblem::hessian_pattern`] lists them) of an `n`-unknown problem with
 /// `ordering`, unknowns placed at `positions` (for the nested dissection; `None`: AMD only,
 /// as the solver does when the problem gives no positions). The symbolic analysis is the one
-/// the solve then takes from [`analyse`]'s cache.
+/// the solve then takes from [`super::symbolic::analyse`]'s cache.
 pub fn factor_cost(
     n: usize,
     pairs: &[(usize, usize)],
     positions: impl FnOnce() -> Option<Vec<[f64; 3]>>,
     ordering: Ordering,
 ) -> FactorCost {
-    let Some((symbolic, slots)) = analyse(n, pairs, ordering, positions) else {
+    let Some(symbolic) = analyse_pattern(n, pairs, ordering, positions) else {
         // The symbolic analysis failed (index overflow): nothing this large can be factored.
         return FactorCost {
             unknowns: n,
@@ -68,7 +68,6 @@ pub fn factor_cost(
             ordering,
         };
     };
-    drop(slots);
     let nnz = symbolic.hessian_nnz();
     // The pattern arrays of the solve: the pairs' slots and their bucketing, row indices,
     // values and shifted values, column pointers and diagonal positions.

@@ -90,6 +90,29 @@ pub fn analyse(
     ordering: Ordering,
     positions: impl FnOnce() -> Option<Vec<[f64; 3]>>,
 ) -> Option<(Arc<Symbolic>, Vec<usize>)> {
+    let (s, slots) = find_or_make(n, pairs, ordering, positions)?;
+    let slots = slots.unwrap_or_else(|| s.slots(pairs).expect("the pattern holds its own pairs"));
+    Some((s, slots))
+}
+
+/// [`analyse`] without the slots (the memory estimate): a new analysis skips them.
+pub fn analyse_pattern(
+    n: usize,
+    pairs: &[(usize, usize)],
+    ordering: Ordering,
+    positions: impl FnOnce() -> Option<Vec<[f64; 3]>>,
+) -> Option<Arc<Symbolic>> {
+    find_or_make(n, pairs, ordering, positions).map(|(s, _)| s)
+}
+
+/// The cached analysis of `pairs` with their slots (the check that it is theirs), or a new one
+/// without.
+fn find_or_make(
+    n: usize,
+    pairs: &[(usize, usize)],
+    ordering: Ordering,
+    positions: impl FnOnce() -> Option<Vec<[f64; 3]>>,
+) -> Option<(Arc<Symbolic>, Option<Vec<usize>>)> {
     let key = Key {
         n,
         pairs: pairs.len(),
@@ -103,16 +126,15 @@ pub fn analyse(
                 .lock()
                 .unwrap_or_else(|e| e.into_inner())
                 .put(s.clone());
-            return Some((s, slots));
+            return Some((s, Some(slots)));
         }
     }
     let s = Arc::new(analyse_uncached(n, pairs, ordering, positions, key)?);
-    let slots = s.slots(pairs).expect("the pattern holds its own pairs");
     CACHE
         .lock()
         .unwrap_or_else(|e| e.into_inner())
         .put(s.clone());
-    Some((s, slots))
+    Some((s, None))
 }
 
 impl Cache {
@@ -169,7 +191,7 @@ fn analyse_uncached(
     key: Key,
 ) -> Option<Symbolic> {
     let (pattern, diag) = upper_pattern(n, pairs);
-    let (cholesky, chosen, other) = choose(n, pairs, ordering, positions, |order| {
+    let (cholesky, chosen, other) = choose(&pattern, ordering, positions, |order| {
         symbolic_factor(&pattern, order)
     })?;
     Some(Symbolic {
