@@ -7,7 +7,7 @@ use faer::sparse::linalg::cholesky::{SymbolicCholesky, SymbolicCholeskyRaw};
 use faer::Par;
 
 use super::ordering::Ordering;
-use super::symbolic::analyse_pattern;
+use super::symbolic::{analyse_pattern, structure_bytes};
 
 /// The cost of factoring one Hessian pattern the way [`super::solve`] will.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -73,14 +73,14 @@ pub fn factor_cost(
     // values and shifted values, column pointers and diagonal positions.
     let pattern_bytes = 8 * (2 * pairs.len() + 3 * nnz + 3 * n) as u64;
     let chosen = analysis(symbolic.cholesky());
-    let other = symbolic.other.as_ref().map(analysis);
+    let other = symbolic.other;
     // The other ordering's structure is alive while the two are compared.
     let resident = [
         pattern_bytes,
         chosen.values,
         chosen.structure,
         chosen.scratch,
-        other.as_ref().map_or(0, |o| o.structure),
+        other.map_or(0, |o| o.structure_bytes),
     ]
     .iter()
     .fold(0u64, |a, &b| a.saturating_add(b));
@@ -99,12 +99,10 @@ pub fn factor_cost(
 /// Non-zeros, work and bytes of the numeric objects of one symbolic analysis: the factor's
 /// values, its symbolic structure, and the numeric and solve scratch.
 fn analysis(sym: &SymbolicCholesky<usize>) -> Analysis {
-    let n = sym.nrows();
-    let (flops, structure) = match sym.raw() {
+    let flops = match sym.raw() {
         SymbolicCholeskyRaw::Simplicial(s) => {
             let cp = s.col_ptr();
-            let flops = cp.windows(2).map(|w| ((w[1] - w[0]) as f64).powi(2)).sum();
-            (flops, 8 * s.row_idx().len())
+            cp.windows(2).map(|w| ((w[1] - w[0]) as f64).powi(2)).sum()
         }
         SymbolicCholeskyRaw::Supernodal(s) => {
             let (begin, end) = (s.supernode_begin(), s.supernode_end());
@@ -118,8 +116,7 @@ fn analysis(sym: &SymbolicCholesky<usize>) -> Analysis {
                     .map(|j| (j as f64 + below).powi(2))
                     .sum::<f64>();
             }
-            // Row indices, and faer's row-major copy of them.
-            (flops, 16 * s.row_idx().len())
+            flops
         }
     };
     let scratch = sym
@@ -133,7 +130,7 @@ fn analysis(sym: &SymbolicCholesky<usize>) -> Analysis {
         factor_nnz,
         flops,
         values: 8 * factor_nnz as u64,
-        structure: (structure + 40 * n) as u64,
+        structure: structure_bytes(sym),
         scratch: scratch as u64,
     }
 }

@@ -8,7 +8,7 @@ use std::sync::{Arc, Mutex};
 
 use faer::perm::PermRef;
 use faer::sparse::linalg::cholesky::{
-    factorize_symbolic_cholesky, SymbolicCholesky, SymmetricOrdering,
+    factorize_symbolic_cholesky, SymbolicCholesky, SymbolicCholeskyRaw, SymmetricOrdering,
 };
 use faer::sparse::SymbolicSparseColMat;
 use faer::Side;
@@ -25,10 +25,27 @@ pub struct Symbolic {
     pub(super) cholesky: SymbolicCholesky<usize>,
     /// The ordering chosen.
     pub ordering: Ordering,
-    /// The other ordering's analysis where both were compared: its factor's non-zeros and its
-    /// symbolic structure (alive while the two are compared).
-    pub other: Option<SymbolicCholesky<usize>>,
+    /// The ordering compared with it and not kept, if any (its structure is dropped).
+    pub other: Option<Compared>,
     key: Key,
+}
+
+/// What the memory estimate needs of the ordering not kept.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Compared {
+    pub factor_nnz: usize,
+    /// Bytes of its symbolic structure, alive while the two orderings are compared.
+    pub structure_bytes: u64,
+}
+
+/// Bytes of a symbolic factorization's structure: its row indices (supernodal: and faer's
+/// row-major copy of them) and about five words per column.
+pub fn structure_bytes(sym: &SymbolicCholesky<usize>) -> u64 {
+    let rows = match sym.raw() {
+        SymbolicCholeskyRaw::Simplicial(s) => 8 * s.row_idx().len(),
+        SymbolicCholeskyRaw::Supernodal(s) => 16 * s.row_idx().len(),
+    };
+    (rows + 40 * sym.nrows()) as u64
 }
 
 impl Symbolic {
@@ -199,7 +216,10 @@ fn analyse_uncached(
         diag,
         cholesky,
         ordering: chosen,
-        other,
+        other: other.map(|o| Compared {
+            factor_nnz: o.len_val(),
+            structure_bytes: structure_bytes(&o),
+        }),
         key,
     })
 }
