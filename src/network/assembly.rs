@@ -7,6 +7,7 @@ use rayon::prelude::*;
 
 use super::model::{Model, FIXED};
 use super::roller::Rollers;
+use super::scratch::Buffers;
 use crate::energy::registry::{TermVisitor, Terms};
 use crate::energy::Term;
 use crate::math::{D1, HD};
@@ -108,11 +109,14 @@ impl Model {
         if let Some(h) = out.hess.as_mut() {
             h.values.iter_mut().for_each(|g| *g = 0.0);
         }
+        let mut held = self.scratch.lock();
+        let mut fresh = Buffers::default();
         let mut a = Assemble {
             st: &self.state,
             free: &self.free,
             rollers: &self.rollers,
             out,
+            buffers: held.as_deref_mut().unwrap_or(&mut fresh),
             energy: 0.0,
         };
         self.terms.visit(&mut a);
@@ -125,6 +129,7 @@ struct Assemble<'a, 'b> {
     free: &'a [u32],
     rollers: &'a Rollers,
     out: &'a mut Assembly<'b>,
+    buffers: &'a mut Buffers,
     energy: f64,
 }
 
@@ -134,9 +139,16 @@ impl TermVisitor for Assemble<'_, '_> {
         // Slanted rollers project every term at their nodes but their own normal springs.
         let rollers = (!self.rollers.is_empty() && Terms::NAMES[kind] != "roller_normals")
             .then_some(self.rollers);
+        let (st, free, out) = (self.st, self.free, &mut *self.out);
         self.energy += match slots {
-            None => gradient_kind(terms, self.st, self.free, rollers, self.out),
-            Some(s) => hessian_kind(terms, &s.0[kind], self.st, self.free, rollers, self.out),
+            None => {
+                let local = self.buffers.results(2 * kind);
+                gradient_kind(terms, st, free, rollers, out, local)
+            }
+            Some(s) => {
+                let local = self.buffers.results(2 * kind + 1);
+                hessian_kind(terms, &s.0[kind], st, free, rollers, out, local)
+            }
         };
     }
 }
@@ -188,15 +200,15 @@ fn gradient_kind<const N: usize, E: Term<N>>(
     free: &[u32],
     rollers: Option<&Rollers>,
     out: &mut Assembly,
+    local: &mut Vec<D1<N>>,
 ) -> f64 {
     let mut energy = 0.0;
-    let mut local: Vec<D1<N>> = Vec::new();
     for block in terms.chunks(BLOCK) {
-        evaluate(block, &mut local, |t: &E| {
+        evaluate(block, local, |t: &E| {
             let x = D1::<N>::vars(&t.gather(&st.q));
             t.eval(st, &x)
         });
-        for (t, r) in block.iter().zip(&local) {
+        for (t, r) in block.iter().zip(local.iter()) {
             energy += r.v;
             let v = t.vars();
             match rollers.filter(|p| p.touches(v)) {
@@ -215,15 +227,13 @@ fn hessian_kind<const N: usize, E: Term<N>>(
     free: &[u32],
     rollers: Option<&Rollers>,
     out: &mut Assembly,
+    local: &mut Vec<HD<N>>,
 ) -> f64 {
     let np = N * (N + 1) / 2;
     let mut energy = 0.0;
-    let mut local: Vec<HD<N>> = Vec::new();
     for (b, block) in terms.chunks(BLOCK).enumerate() {
-        evaluate(block, &mut local, |t: &E| {
-            t.derivatives(st, &t.gather(&st.q))
-        });
-        for (k, (t, full)) in block.iter().zip(&local).enumerate() {
+        evaluate(block, local, |t: &E| t.derivatives(st, &t.gather(&st.q)));
+        for (k, (t, full)) in block.iter().zip(local.iter()).enumerate() {
             energy += full.v;
             let v = t.vars();
             let projected = rollers.filter(|p| p.touches(v)).map(|p| p.project(v, full));

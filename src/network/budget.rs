@@ -43,15 +43,6 @@ pub struct Estimate {
 }
 
 impl Estimate {
-    /// Bytes the solve allocates: the resident peak and the factor allocated but never
-    /// written ([`FactorCost::reserved`]). What the limit is checked against, since an
-    /// allocation the machine cannot give aborts the process even if it would stay untouched.
-    pub fn allocated(&self) -> u64 {
-        self.bytes.saturating_add(self.factor.reserved)
-    }
-}
-
-impl Estimate {
     /// One line for messages: sizes, the factor's fill and the peak.
     pub fn describe(&self) -> String {
         let f = &self.factor;
@@ -68,13 +59,8 @@ impl Estimate {
             },
             f.flops,
             bytes_text(self.bytes),
-            if f.reserved > 0 {
-                format!(
-                    ", {} allocated (the other ordering's factor, {} non-zeros, is allocated \
-                     while the two are compared)",
-                    bytes_text(self.allocated()),
-                    f.other_factor_nnz
-                )
+            if f.other_factor_nnz > 0 {
+                format!(" (the other ordering: {} non-zeros)", f.other_factor_nnz)
             } else {
                 String::new()
             }
@@ -136,8 +122,7 @@ fn term_bytes(m: &Model) -> (u64, u64) {
 pub fn estimate(net: &Network, ordering: Ordering) -> Estimate {
     let m = &net.model;
     let pairs = m.hessian_pattern();
-    let positions = m.unknown_positions();
-    let factor = factor_cost(m.n_free, &pairs, Some(&positions), ordering);
+    let factor = factor_cost(m.n_free, &pairs, || Some(m.unknown_positions()), ordering);
     drop(pairs);
     let (terms, slots) = term_bytes(m);
     let vars = m.state.q.len() as u64;
@@ -220,7 +205,7 @@ pub fn check_network(
     if std::env::var_os("RODNET_ESTIMATE").is_some() {
         eprintln!("estimate: {}", e.describe());
     }
-    if e.allocated() > limit {
+    if e.bytes > limit {
         return Err(refusal(scene, &e.describe(), limit));
     }
     Ok(e)

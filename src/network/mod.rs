@@ -21,6 +21,7 @@ pub mod problem;
 pub mod projection;
 pub mod rest;
 pub mod roller;
+pub mod scratch;
 pub mod stability;
 pub mod stage;
 pub mod states;

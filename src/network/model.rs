@@ -11,6 +11,7 @@ use crate::energy::{Category, Term};
 use crate::math::vec::{norm, normalize, scalef, sub, transport};
 use crate::network::contact::Contact;
 use crate::network::roller::{Rollers, SlantedRoller};
+use crate::network::scratch::Scratch;
 use crate::variables::{DofLayout, FrameRef, State, Unknowns, VarKind};
 
 pub use crate::variables::FIXED;
@@ -128,6 +129,8 @@ pub struct Model {
     pub contact: Option<Contact>,
     /// Rollers with a general normal (`network/roller.rs`).
     pub rollers: Rollers,
+    /// Buffers reused by every assembly and commit, so that Newton iterations do not allocate.
+    pub scratch: Scratch,
 }
 
 /// The pieces a [`Model`] is made of (everything but the free map, which follows from `fixed`).
@@ -172,6 +175,7 @@ impl Model {
             force_scale: p.scales.force,
             contact: p.contact,
             rollers: Rollers::new(p.rollers, p.layout.len()),
+            scratch: Scratch::default(),
         }
     }
 
@@ -285,12 +289,16 @@ impl Model {
                 self.1.extend(terms.iter().filter_map(|t| t.remembered(st)));
             }
         }
-        let mut remember = Remember(&self.state, Vec::new());
+        let mut buffer = std::mem::take(&mut self.scratch.get().remembered);
+        buffer.clear();
+        let mut remember = Remember(&self.state, buffer);
         self.terms.visit(&mut remember);
         // Frame twists depend on ω, so fold ω only after their values are taken.
-        for (slot, v) in remember.1 {
+        let remembered = remember.1;
+        for &(slot, v) in &remembered {
             self.state.twist_prev[slot] = v;
         }
+        self.scratch.get().remembered = remembered;
         for f in 0..self.layout.n_frames() {
             let vars = self.layout.frame(f);
             let w = vars.map(|v| self.state.q[v]);

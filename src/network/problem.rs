@@ -23,6 +23,8 @@ pub struct NetworkProblem<'m> {
     projector: Option<Projector>,
     /// Scratch copy of the variables for trial evaluations.
     saved_q: Vec<f64>,
+    /// Scratch of `residual_floor`: the rounding noise and the gradient it causes.
+    floor_scratch: (Vec<f64>, Vec<f64>),
     /// A temporary dead force on the free unknowns (energy −b·q), empty for none: the bias of
     /// `buckle_toward` (`network/buckle.rs`).
     bias: Vec<f64>,
@@ -43,6 +45,7 @@ impl<'m> NetworkProblem<'m> {
             slots: HessianSlots::default(),
             projector: None,
             saved_q: Vec::new(),
+            floor_scratch: (Vec::new(), Vec::new()),
             bias: Vec::new(),
             toward: None,
             rods: &[],
@@ -199,12 +202,15 @@ impl NewtonProblem for NetworkProblem<'_> {
         // measures, and decisions against the floor would depend on the last bits.
         const AMPLIFY: f64 = 1024.0;
         let n = self.model.n_free;
-        let mut noise = vec![0.0; n];
+        let (mut noise, mut g1) = std::mem::take(&mut self.floor_scratch);
+        noise.resize(n, 0.0);
+        g1.resize(n, 0.0);
         self.model.rounding_noise(&mut noise);
-        let mut g1 = vec![0.0; n];
         self.trial_gradient(&noise, AMPLIFY, &mut g1);
         g1.iter_mut().zip(grad).for_each(|(a, b)| *a -= b);
-        2.0 * self.model.relative_residual(&g1) / AMPLIFY
+        let floor = 2.0 * self.model.relative_residual(&g1) / AMPLIFY;
+        self.floor_scratch = (noise, g1);
+        floor
     }
     fn num_free(&self) -> usize {
         self.model.n_free

@@ -20,6 +20,10 @@ pub struct Projector {
     /// signs, recorded as (slot, e, f, node, sign product).
     diag: Vec<usize>,
     offdiag: Vec<(usize, usize, usize, usize, f64)>,
+    /// Scratch of [`Self::correction`]: each edge's moved tangent and length excess (kept so
+    /// that Newton iterations do not allocate).
+    tn: Vec<[f64; 3]>,
+    s: Vec<f64>,
 }
 
 impl Projector {
@@ -59,6 +63,8 @@ impl Projector {
             chol,
             diag: slots[..ne].to_vec(),
             offdiag,
+            tn: vec![[0.0; 3]; ne],
+            s: vec![0.0; ne],
         }
     }
 
@@ -73,9 +79,7 @@ impl Projector {
         c: &mut [f64],
     ) -> bool {
         let step = |n: usize| std::array::from_fn(|k| u.of_node(n, k).map_or(0.0, |f| d[f]));
-        let ne = edge_nodes.len();
-        let mut tn = vec![[0.0; 3]; ne];
-        let mut s = vec![0.0; ne];
+        let (mut tn, mut s) = (std::mem::take(&mut self.tn), std::mem::take(&mut self.s));
         let mut any = false;
         for (e, &[a, b]) in edge_nodes.iter().enumerate() {
             let ev = sub(u.layout.position(q, b), u.layout.position(q, a));
@@ -88,10 +92,9 @@ impl Projector {
             any |= s[e].abs() > 1e-14 * l;
         }
         c.iter_mut().for_each(|v| *v = 0.0);
-        if !any {
-            return false;
-        }
-        self.min_norm(u, edge_nodes, &tn, &mut s, c)
+        let r = any && self.min_norm(u, edge_nodes, &tn, &mut s, c);
+        (self.tn, self.s) = (tn, s);
+        r
     }
 
     /// Moves the free nodes by the smallest displacement that brings every edge back to the

@@ -3,14 +3,11 @@
 //! ordering) and gives the factor's non-zeros exactly, so a scene too large for the machine can
 //! be refused instead of aborting in the allocator (docs/performance.md, "Memory").
 
-use faer::perm::PermRef;
-use faer::sparse::linalg::cholesky::{
-    factorize_symbolic_cholesky, SymbolicCholesky, SymbolicCholeskyRaw, SymmetricOrdering,
-};
-use faer::sparse::SymbolicSparseColMat;
-use faer::{Par, Side};
+use faer::sparse::linalg::cholesky::{SymbolicCholesky, SymbolicCholeskyRaw};
+use faer::Par;
 
-use super::ordering::{nested_dissection, Ordering, AUTO_FILL_RATIO, AUTO_MIN_UNKNOWNS};
+use super::ordering::Ordering;
+use super::symbolic::{analyse_pattern, structure_bytes};
 
 /// The cost of factoring one Hessian pattern the way [`super::solve`] will.
 #[derive(Debug, Clone, Copy, PartialEq)]
@@ -28,11 +25,8 @@ pub struct FactorCost {
     /// Peak resident bytes of the factorization objects: the pattern arrays, the factor kept,
     /// its structure and scratch, and the structure of the factor compared with it.
     pub bytes: u64,
-    /// Bytes allocated but never written: where `Auto` analyses both orderings, both factors
-    /// are allocated at once, and the one not kept is dropped untouched. The allocation must
-    /// still succeed, so a factor larger than the machine aborts the process all the same.
-    pub reserved: u64,
-    /// Non-zeros of that factor not kept (0 where only one ordering is analysed).
+    /// Non-zeros of the factor of the ordering compared and not kept (0 where only one
+    /// ordering is analysed). Only its structure is made, never its values.
     pub other_factor_nnz: usize,
     /// The ordering chosen.
     pub ordering: Ordering,
@@ -53,108 +47,43 @@ struct Analysis {
 /// The cost of factoring the pattern `pairs` (upper-triangle pairs, as
 /// [`super::NewtonProblem::hessian_pattern`] lists them) of an `n`-unknown problem with
 /// `ordering`, unknowns placed at `positions` (for the nested dissection; `None`: AMD only,
-/// as the solver does when the problem gives no positions).
+/// as the solver does when the problem gives no positions). The symbolic analysis is the one
+/// the solve then takes from [`super::symbolic::analyse`]'s cache.
 pub fn factor_cost(
     n: usize,
     pairs: &[(usize, usize)],
-    positions: Option<&[[f64; 3]]>,
+    positions: impl FnOnce() -> Option<Vec<[f64; 3]>>,
     ordering: Ordering,
 ) -> FactorCost {
-    let mut upper: Vec<(usize, usize)> = pairs.iter().map(|&(r, c)| (c, r)).collect();
-    upper.sort_unstable();
-    upper.dedup();
-    let nnz = upper.len();
-    let mut col_ptr = vec![0usize; n + 1];
-    for &(c, _) in &upper {
-        col_ptr[c + 1] += 1;
-    }
-    for c in 0..n {
-        col_ptr[c + 1] += col_ptr[c];
-    }
-    let row_idx: Vec<usize> = upper.iter().map(|&(_, r)| r).collect();
-    drop(upper);
-    // The same pattern arrays as `SparseCholesky::with_order`: the pairs' sort order and slots,
-    // row indices, values and shifted values, column pointers and diagonal positions.
-    let pattern_bytes = 8 * (2 * pairs.len() + 3 * nnz + 3 * n) as u64;
-    let pattern = SymbolicSparseColMat::new_checked(n, n, col_ptr, None, row_idx);
-    let analyse = |elimination: Option<&[usize]>| -> Option<Analysis> {
-        let inverse: Vec<usize> = elimination.map_or_else(Vec::new, |fwd| {
-            let mut inv = vec![0; n];
-            for (k, &i) in fwd.iter().enumerate() {
-                inv[i] = k;
-            }
-            inv
-        });
-        let ord = match elimination {
-            Some(fwd) => SymmetricOrdering::Custom(PermRef::new_checked(fwd, &inverse, n)),
-            None => SymmetricOrdering::Amd,
-        };
-        let sym = factorize_symbolic_cholesky(
-            pattern.as_ref(),
-            Side::Upper,
-            ord,
-            super::linalg::symbolic_params(),
-        )
-        .ok()?;
-        Some(analysis(&sym))
-    };
-    // The solver's choice (`ordering::factorization`): AMD below the size where the dissection
-    // is tried, else both, the dissection kept only if it saves enough fill.
-    let try_nd = match ordering {
-        Ordering::Amd => false,
-        Ordering::NestedDissection => true,
-        Ordering::Auto => n >= AUTO_MIN_UNKNOWNS,
-    };
-    let nd = match positions {
-        Some(pts) if try_nd => {
-            let order = nested_dissection(n, pairs, pts);
-            analyse(Some(&order))
-        }
-        _ => None,
-    };
-    let amd = match (&nd, ordering) {
-        (Some(_), Ordering::NestedDissection) => None,
-        _ => analyse(None),
-    };
-    let (chosen, other, ordering) = match (nd, amd) {
-        (Some(nd), Some(amd)) => {
-            if (nd.factor_nnz as f64) < AUTO_FILL_RATIO * amd.factor_nnz as f64 {
-                (nd, Some(amd), Ordering::NestedDissection)
-            } else {
-                (amd, Some(nd), Ordering::Amd)
-            }
-        }
-        (Some(nd), None) => (nd, None, Ordering::NestedDissection),
-        (None, Some(amd)) => (amd, None, Ordering::Amd),
+    let Some(symbolic) = analyse_pattern(n, pairs, ordering, positions) else {
         // The symbolic analysis failed (index overflow): nothing this large can be factored.
-        (None, None) => (
-            Analysis {
-                factor_nnz: usize::MAX,
-                flops: f64::INFINITY,
-                values: u64::MAX,
-                structure: u64::MAX,
-                scratch: u64::MAX,
-            },
-            None,
+        return FactorCost {
+            unknowns: n,
+            pairs: pairs.len(),
+            hessian_nnz: pairs.len(),
+            factor_nnz: usize::MAX,
+            flops: f64::INFINITY,
+            bytes: u64::MAX,
+            other_factor_nnz: 0,
             ordering,
-        ),
+        };
     };
-    // The factor the solver does not keep is allocated, zeroed, while both are compared, but
-    // its values are never written: the allocator reserves them (as untouched zero pages)
-    // without making them resident. Its structure is written, and is resident.
+    let nnz = symbolic.hessian_nnz();
+    // The pattern arrays of the solve: the pairs' slots and their bucketing, row indices,
+    // values and shifted values, column pointers and diagonal positions.
+    let pattern_bytes = 8 * (2 * pairs.len() + 3 * nnz + 3 * n) as u64;
+    let chosen = analysis(symbolic.cholesky());
+    let other = symbolic.other;
+    // The other ordering's structure is alive while the two are compared.
     let resident = [
         pattern_bytes,
         chosen.values,
         chosen.structure,
         chosen.scratch,
-        other.as_ref().map_or(0, |o| o.structure),
+        other.map_or(0, |o| o.structure_bytes),
     ]
     .iter()
     .fold(0u64, |a, &b| a.saturating_add(b));
-    let reserved = other
-        .as_ref()
-        .map_or(0, |o| o.values.saturating_add(o.scratch));
-    let other_factor_nnz = other.map_or(0, |o| o.factor_nnz);
     FactorCost {
         unknowns: n,
         pairs: pairs.len(),
@@ -162,21 +91,18 @@ pub fn factor_cost(
         factor_nnz: chosen.factor_nnz,
         flops: chosen.flops,
         bytes: resident,
-        reserved,
-        other_factor_nnz,
-        ordering,
+        other_factor_nnz: other.map_or(0, |o| o.factor_nnz),
+        ordering: symbolic.ordering,
     }
 }
 
 /// Non-zeros, work and bytes of the numeric objects of one symbolic analysis: the factor's
 /// values, its symbolic structure, and the numeric and solve scratch.
 fn analysis(sym: &SymbolicCholesky<usize>) -> Analysis {
-    let n = sym.nrows();
-    let (flops, structure) = match sym.raw() {
+    let flops = match sym.raw() {
         SymbolicCholeskyRaw::Simplicial(s) => {
             let cp = s.col_ptr();
-            let flops = cp.windows(2).map(|w| ((w[1] - w[0]) as f64).powi(2)).sum();
-            (flops, 8 * s.row_idx().len())
+            cp.windows(2).map(|w| ((w[1] - w[0]) as f64).powi(2)).sum()
         }
         SymbolicCholeskyRaw::Supernodal(s) => {
             let (begin, end) = (s.supernode_begin(), s.supernode_end());
@@ -190,8 +116,7 @@ fn analysis(sym: &SymbolicCholesky<usize>) -> Analysis {
                     .map(|j| (j as f64 + below).powi(2))
                     .sum::<f64>();
             }
-            // Row indices, and faer's row-major copy of them.
-            (flops, 16 * s.row_idx().len())
+            flops
         }
     };
     let scratch = sym
@@ -205,7 +130,7 @@ fn analysis(sym: &SymbolicCholesky<usize>) -> Analysis {
         factor_nnz,
         flops,
         values: 8 * factor_nnz as u64,
-        structure: (structure + 40 * n) as u64,
+        structure: structure_bytes(sym),
         scratch: scratch as u64,
     }
 }
@@ -222,14 +147,14 @@ mod tests {
         let m = 30;
         let n = m * m;
         let (pairs, pts) = crate::solver::ordering::grid_graph(m);
-        let amd = factor_cost(n, &pairs, Some(&pts), Ordering::Amd);
+        let amd = factor_cost(n, &pairs, || Some(pts.clone()), Ordering::Amd);
         assert_eq!(
             amd.factor_nnz,
             SparseCholesky::new(n, &pairs).0.factor_nnz()
         );
         assert_eq!(amd.hessian_nnz, pairs.len());
-        let nd = factor_cost(n, &pairs, Some(&pts), Ordering::NestedDissection);
-        let order = nested_dissection(n, &pairs, &pts);
+        let nd = factor_cost(n, &pairs, || Some(pts.clone()), Ordering::NestedDissection);
+        let order = crate::solver::ordering::nested_dissection(n, &pairs, &pts);
         let solver = SparseCholesky::with_order(n, &pairs, Some(&order)).0;
         assert_eq!(nd.factor_nnz, solver.factor_nnz());
         assert!(amd.flops >= amd.factor_nnz as f64);

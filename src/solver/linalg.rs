@@ -2,16 +2,16 @@
 //! supernodes) is done once per sparsity pattern; each Newton iteration refills values and
 //! refactors numerically, optionally with a diagonal shift.
 
+use std::sync::Arc;
+
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::linalg::cholesky::ldlt::factor::LdltRegularization;
 use faer::linalg::cholesky::llt::factor::LltRegularization;
-use faer::perm::PermRef;
-use faer::sparse::linalg::cholesky::{
-    factorize_symbolic_cholesky, CholeskySymbolicParams, LdltRef, LltRef, SymbolicCholesky,
-    SymmetricOrdering,
-};
-use faer::sparse::{SparseColMatRef, SymbolicSparseColMat};
+use faer::sparse::linalg::cholesky::{CholeskySymbolicParams, LdltRef, LltRef};
+use faer::sparse::SparseColMatRef;
 use faer::{Conj, MatMut, Par, Side};
+
+use super::symbolic::{self, Symbolic};
 
 /// The symbolic analysis's settings. faer's automatic choice (threshold 1) takes the supernodal
 /// factorization when the factor's flops per non-zero exceed 40; on rod networks the supernodal
@@ -27,12 +27,11 @@ pub fn symbolic_params() -> CholeskySymbolicParams<'static> {
 
 pub struct SparseCholesky {
     n: usize,
-    pattern: SymbolicSparseColMat<usize>,
+    /// The pattern's analysis, shared with every other factorization of the pattern.
+    symbolic: Arc<Symbolic>,
     /// Values of the upper triangle, in CSC order; callers fill them through slots.
     pub values: Vec<f64>,
-    diag: Vec<usize>,
     shifted: Vec<f64>,
-    symbolic: SymbolicCholesky<usize>,
     l: Vec<f64>,
     factor_mem: MemBuffer,
     solve_mem: MemBuffer,
@@ -60,76 +59,36 @@ impl SparseCholesky {
         pairs: &[(usize, usize)],
         elimination: Option<&[usize]>,
     ) -> (SparseCholesky, Vec<usize>) {
-        let mut order: Vec<usize> = (0..pairs.len()).collect();
-        order.sort_unstable_by_key(|&k| (pairs[k].1, pairs[k].0));
-        let mut col_ptr = vec![0usize; n + 1];
-        let mut row_idx: Vec<usize> = Vec::with_capacity(pairs.len());
-        let mut slot = vec![0usize; pairs.len()];
-        let mut last: Option<(usize, usize)> = None;
-        for &k in &order {
-            let (r, c) = pairs[k];
-            debug_assert!(r <= c && c < n);
-            if last != Some((r, c)) {
-                row_idx.push(r);
-                col_ptr[c + 1] = row_idx.len();
-                last = Some((r, c));
-            }
-            slot[k] = row_idx.len() - 1;
-        }
-        for c in 0..n {
-            col_ptr[c + 1] = col_ptr[c + 1].max(col_ptr[c]);
-        }
-        let nnz = row_idx.len();
-        let mut diag = vec![usize::MAX; n];
-        for c in 0..n {
-            for p in col_ptr[c]..col_ptr[c + 1] {
-                if row_idx[p] == c {
-                    diag[c] = p;
-                }
-            }
-        }
-        assert!(
-            diag.iter().all(|&d| d != usize::MAX),
-            "pattern lacks a diagonal entry"
-        );
-        let pattern = SymbolicSparseColMat::new_checked(n, n, col_ptr, None, row_idx);
-        let inverse: Vec<usize> = elimination.map_or_else(Vec::new, |fwd| {
-            let mut inv = vec![0; n];
-            for (k, &i) in fwd.iter().enumerate() {
-                inv[i] = k;
-            }
-            inv
-        });
-        let ordering = match elimination {
-            Some(fwd) => SymmetricOrdering::Custom(PermRef::new_checked(fwd, &inverse, n)),
-            None => SymmetricOrdering::Amd,
-        };
         let symbolic =
-            factorize_symbolic_cholesky(pattern.as_ref(), Side::Upper, ordering, symbolic_params())
-                .expect("symbolic Cholesky analysis");
+            symbolic::with_order(n, pairs, elimination).expect("symbolic Cholesky analysis");
+        let slots = symbolic
+            .slots(pairs)
+            .expect("the pattern holds its own pairs");
+        (Self::from_symbolic(Arc::new(symbolic)), slots)
+    }
+
+    /// The numeric objects of a factorization on an analysed pattern.
+    pub fn from_symbolic(symbolic: Arc<Symbolic>) -> SparseCholesky {
         let par = Par::Seq;
+        let sym = symbolic.cholesky();
         let factor_mem =
-            MemBuffer::new(symbolic.factorize_numeric_llt_scratch::<f64>(par, Default::default()));
-        let solve_mem = MemBuffer::new(symbolic.solve_in_place_scratch::<f64>(1, par));
-        let l = vec![0.0; symbolic.len_val()];
-        (
-            SparseCholesky {
-                n,
-                pattern,
-                values: vec![0.0; nnz],
-                diag,
-                shifted: vec![0.0; nnz],
-                symbolic,
-                l,
-                factor_mem,
-                solve_mem,
-                factored: false,
-                ldlt: Vec::new(),
-                ldlt_mem: MemBuffer::new(faer::dyn_stack::StackReq::EMPTY),
-                ldlt_factored: false,
-            },
-            slot,
-        )
+            MemBuffer::new(sym.factorize_numeric_llt_scratch::<f64>(par, Default::default()));
+        let solve_mem = MemBuffer::new(sym.solve_in_place_scratch::<f64>(1, par));
+        let l = vec![0.0; sym.len_val()];
+        let nnz = symbolic.hessian_nnz();
+        SparseCholesky {
+            n: symbolic.pattern.ncols(),
+            values: vec![0.0; nnz],
+            shifted: vec![0.0; nnz],
+            symbolic,
+            l,
+            factor_mem,
+            solve_mem,
+            factored: false,
+            ldlt: Vec::new(),
+            ldlt_mem: MemBuffer::new(faer::dyn_stack::StackReq::EMPTY),
+            ldlt_factored: false,
+        }
     }
 
     pub fn dim(&self) -> usize {
@@ -143,12 +102,12 @@ impl SparseCholesky {
 
     /// Column pointers of the stored upper triangle (CSC).
     pub fn col_ptr(&self) -> &[usize] {
-        self.pattern.col_ptr()
+        self.symbolic.pattern.col_ptr()
     }
 
     /// Row indices of the stored upper triangle (CSC, sorted within each column).
     pub fn row_idx(&self) -> &[usize] {
-        self.pattern.row_idx()
+        self.symbolic.pattern.row_idx()
     }
 
     /// Values of A + shift·I from the last call to [`Self::factor`] (successful or not), in the
@@ -159,7 +118,8 @@ impl SparseCholesky {
 
     /// Largest absolute diagonal value.
     pub fn diagonal_scale(&self) -> f64 {
-        self.diag
+        self.symbolic
+            .diag
             .iter()
             .map(|&p| self.values[p].abs())
             .fold(0.0, f64::max)
@@ -167,12 +127,13 @@ impl SparseCholesky {
 
     /// Diagonal value A_ii.
     pub fn diagonal(&self, i: usize) -> f64 {
-        self.values[self.diag[i]]
+        self.values[self.symbolic.diag[i]]
     }
 
     /// The shift of the last factorization on each diagonal entry (shift·wᵢ; zeros unshifted).
     pub fn shift_diagonal(&self) -> Vec<f64> {
-        self.diag
+        self.symbolic
+            .diag
             .iter()
             .map(|&p| self.shifted[p] - self.values[p])
             .collect()
@@ -190,11 +151,11 @@ impl SparseCholesky {
         weights: &[f64],
     ) -> Result<(), NotPositiveDefinite> {
         self.shifted.copy_from_slice(&self.values);
-        for (i, &p) in self.diag.iter().enumerate() {
+        for (i, &p) in self.symbolic.diag.iter().enumerate() {
             self.shifted[p] += shift * weights.get(i).copied().unwrap_or(1.0);
         }
-        let a = SparseColMatRef::new(self.pattern.as_ref(), &self.shifted);
-        let r = self.symbolic.factorize_numeric_llt(
+        let a = SparseColMatRef::new(self.symbolic.pattern.as_ref(), &self.shifted);
+        let r = self.symbolic.cholesky.factorize_numeric_llt(
             &mut self.l,
             a,
             Side::Upper,
@@ -215,14 +176,15 @@ impl SparseCholesky {
     /// equilibrium path past a limit point), not singular. Kept apart from the LLᵀ factor.
     pub fn factor_ldlt(&mut self) -> Result<(), NotPositiveDefinite> {
         if self.ldlt.is_empty() {
-            self.ldlt = vec![0.0; self.symbolic.len_val()];
+            self.ldlt = vec![0.0; self.symbolic.cholesky.len_val()];
             self.ldlt_mem = MemBuffer::new(
                 self.symbolic
+                    .cholesky
                     .factorize_numeric_ldlt_scratch::<f64>(Par::Seq, Default::default()),
             );
         }
-        let a = SparseColMatRef::new(self.pattern.as_ref(), &self.values);
-        let r = self.symbolic.factorize_numeric_ldlt(
+        let a = SparseColMatRef::new(self.symbolic.pattern.as_ref(), &self.values);
+        let r = self.symbolic.cholesky.factorize_numeric_ldlt(
             &mut self.ldlt,
             a,
             Side::Upper,
@@ -242,7 +204,7 @@ impl SparseCholesky {
     /// Solves A x = rhs in place with the last successful LDLᵀ factorization.
     pub fn solve_ldlt(&mut self, rhs: &mut [f64]) {
         assert!(self.ldlt_factored, "solve without an LDLᵀ factorization");
-        let f = LdltRef::<usize, f64>::new(&self.symbolic, &self.ldlt);
+        let f = LdltRef::<usize, f64>::new(&self.symbolic.cholesky, &self.ldlt);
         let m = MatMut::from_column_major_slice_mut(rhs, self.n, 1);
         f.solve_in_place_with_conj(Conj::No, m, Par::Seq, MemStack::new(&mut self.solve_mem));
     }
@@ -250,7 +212,7 @@ impl SparseCholesky {
     /// Solves (A + shift·I) x = rhs in place with the last successful factorization.
     pub fn solve(&mut self, rhs: &mut [f64]) {
         assert!(self.factored, "solve without a factorization");
-        let llt = LltRef::<usize, f64>::new(&self.symbolic, &self.l);
+        let llt = LltRef::<usize, f64>::new(&self.symbolic.cholesky, &self.l);
         let m = MatMut::from_column_major_slice_mut(rhs, self.n, 1);
         llt.solve_in_place_with_conj(Conj::No, m, Par::Seq, MemStack::new(&mut self.solve_mem));
     }
@@ -263,8 +225,8 @@ impl SparseCholesky {
     /// y = A x for another matrix of the same pattern, given by its `values`.
     pub fn multiply_with(&self, values: &[f64], x: &[f64], y: &mut [f64]) {
         y.iter_mut().for_each(|v| *v = 0.0);
-        let cp = self.pattern.col_ptr();
-        let ri = self.pattern.row_idx();
+        let cp = self.symbolic.pattern.col_ptr();
+        let ri = self.symbolic.pattern.row_idx();
         for c in 0..self.n {
             for p in cp[c]..cp[c + 1] {
                 let r = ri[p];

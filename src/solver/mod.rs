@@ -14,6 +14,7 @@ pub mod saddle;
 pub mod settings;
 pub mod spectrum;
 mod step;
+pub mod symbolic;
 
 pub use continuation::solve;
 pub use ordering::Ordering;

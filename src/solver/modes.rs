@@ -125,19 +125,23 @@ impl Newton {
     /// first: an unsupported body's rigid turns would otherwise always trigger the full search.
     pub(super) fn near_singular(&mut self, gauges: &[Vec<f64>]) -> bool {
         const ZERO: f64 = 1e-10;
-        let n = self.g.len();
+        // The corrections' buffers are free between iterations: no allocation at convergence.
+        let (mut r, mut x) = (std::mem::take(&mut self.c), std::mem::take(&mut self.c2));
         let (s, w) = (&self.scales, &self.weights);
-        let r: Vec<f64> = (0..n)
-            .map(|i| (1.0 + 0.5 * ((i as f64) * 1.3).sin()) * s[i])
-            .collect();
+        for (i, v) in r.iter_mut().enumerate() {
+            *v = (1.0 + 0.5 * ((i as f64) * 1.3).sin()) * s[i];
+        }
         let wdot = |a: &[f64], b: &[f64]| wdot(a, b, w);
-        let mut x: Vec<f64> = r.iter().zip(w).map(|(r, w)| r * w).collect();
+        for ((x, r), w) in x.iter_mut().zip(&r).zip(w) {
+            *x = r * w;
+        }
         self.chol.solve(&mut x);
         for q in gauges {
             let c = wdot(&x, q);
             x.iter_mut().zip(q).for_each(|(x, q)| *x -= c * q);
         }
         let growth = wdot(&x, &x).sqrt() / wdot(&r, &r).sqrt().max(f64::MIN_POSITIVE);
+        (self.c, self.c2) = (r, x);
         growth * self.scaled_diagonal() > 1.0 / ZERO
     }
 

@@ -8,8 +8,12 @@
 //! the smaller boundary (those with a neighbour on the other side), order both halves
 //! recursively and the separator last.
 
+use faer::sparse::linalg::cholesky::SymbolicCholesky;
+use faer::sparse::SymbolicSparseColMat;
+
 use super::linalg::SparseCholesky;
 use super::problem::NewtonProblem;
+use super::symbolic::analyse;
 
 /// Below this many unknowns a part is not split further.
 const LEAF: usize = 64;
@@ -38,9 +42,27 @@ pub const AUTO_FILL_RATIO: f64 = 0.6;
 /// duplicates and the diagonal allowed) over unknowns placed at `points`. Returns the
 /// elimination order: position k holds the unknown eliminated k-th.
 pub fn nested_dissection(n: usize, pairs: &[(usize, usize)], points: &[[f64; 3]]) -> Vec<usize> {
+    dissection(n, || pairs.iter().copied(), points)
+}
+
+/// [`nested_dissection`] of a stored upper triangle: its distinct pairs give the same order as
+/// the problem's pairs with their duplicates, from a third of the adjacency.
+fn dissection_of_pattern(pattern: &SymbolicSparseColMat<usize>, points: &[[f64; 3]]) -> Vec<usize> {
+    let (cp, ri) = (pattern.col_ptr(), pattern.row_idx());
+    let pairs = || {
+        (0..pattern.ncols()).flat_map(move |c| ri[cp[c]..cp[c + 1]].iter().map(move |&r| (r, c)))
+    };
+    dissection(pattern.ncols(), pairs, points)
+}
+
+fn dissection<I: Iterator<Item = (usize, usize)>>(
+    n: usize,
+    pairs: impl Fn() -> I,
+    points: &[[f64; 3]],
+) -> Vec<usize> {
     assert_eq!(points.len(), n);
     let mut start = vec![0usize; n + 1];
-    for &(r, c) in pairs {
+    for (r, c) in pairs() {
         if r != c {
             start[r + 1] += 1;
             start[c + 1] += 1;
@@ -51,7 +73,7 @@ pub fn nested_dissection(n: usize, pairs: &[(usize, usize)], points: &[[f64; 3]]
     }
     let mut fill = start.clone();
     let mut adj = vec![0usize; start[n]];
-    for &(r, c) in pairs {
+    for (r, c) in pairs() {
         if r != c {
             adj[fill[r]] = c;
             fill[r] += 1;
@@ -162,31 +184,70 @@ impl Dissection<'_> {
     }
 }
 
-/// The sparse Cholesky of the problem's Hessian pattern, with the ordering `ordering` asks for.
+/// The sparse Cholesky of the problem's Hessian pattern, with the ordering `ordering` asks for,
+/// on the pattern's analysis made once per process ([`super::symbolic::analyse`]).
 pub(super) fn factorization<P: NewtonProblem>(
     p: &P,
     n: usize,
     pairs: &[(usize, usize)],
     ordering: Ordering,
 ) -> (SparseCholesky, Vec<usize>) {
+    let (symbolic, slots) =
+        analyse(n, pairs, ordering, || p.unknown_positions()).expect("symbolic Cholesky analysis");
+    (SparseCholesky::from_symbolic(symbolic), slots)
+}
+
+/// The symbolic factorization of the upper triangle `pattern` with the ordering `ordering`
+/// asks for: AMD below the size where the dissection is tried (or without `positions`), else
+/// the dissection, kept under `Auto` only if it saves enough fill over AMD. AMD is analysed
+/// first (it costs a fraction of the dissection), and the dissection not at all when AMD's
+/// factor is already too close to the pattern itself for any ordering to save that much.
+/// `analyse` makes the symbolic factorization of an elimination order (`None`: AMD). Returns
+/// the one chosen, its ordering, and the other one where both were made.
+pub(super) fn choose(
+    pattern: &SymbolicSparseColMat<usize>,
+    ordering: Ordering,
+    positions: impl FnOnce() -> Option<Vec<[f64; 3]>>,
+    analyse: impl Fn(Option<&[usize]>) -> Option<SymbolicCholesky<usize>>,
+) -> Option<(
+    SymbolicCholesky<usize>,
+    Ordering,
+    Option<SymbolicCholesky<usize>>,
+)> {
+    let n = pattern.ncols();
     let try_nd = match ordering {
         Ordering::Amd => false,
         Ordering::NestedDissection => true,
         Ordering::Auto => n >= AUTO_MIN_UNKNOWNS,
     };
-    let Some(pts) = try_nd.then(|| p.unknown_positions()).flatten() else {
-        return SparseCholesky::new(n, pairs);
+    let amd = match ordering {
+        Ordering::NestedDissection => None,
+        _ => Some(analyse(None)?),
     };
-    let nd = SparseCholesky::with_order(n, pairs, Some(&nested_dissection(n, pairs, &pts)));
-    if ordering == Ordering::NestedDissection {
-        return nd;
-    }
-    let amd = SparseCholesky::new(n, pairs);
-    if (nd.0.factor_nnz() as f64) < AUTO_FILL_RATIO * amd.0.factor_nnz() as f64 {
-        nd
-    } else {
-        amd
-    }
+    // Every factor holds the pattern's entries: no ordering has fewer non-zeros than that.
+    let nd_cannot_win = amd
+        .as_ref()
+        .is_some_and(|a| AUTO_FILL_RATIO * a.len_val() as f64 <= pattern.row_idx().len() as f64);
+    let pts = (try_nd && !nd_cannot_win).then(positions).flatten();
+    let Some(pts) = pts else {
+        let amd = match amd {
+            Some(a) => a,
+            None => analyse(None)?,
+        };
+        return Some((amd, Ordering::Amd, None));
+    };
+    let nd = analyse(Some(&dissection_of_pattern(pattern, &pts)))?;
+    drop(pts);
+    let Some(amd) = amd else {
+        return Some((nd, Ordering::NestedDissection, None));
+    };
+    Some(
+        if (nd.len_val() as f64) < AUTO_FILL_RATIO * amd.len_val() as f64 {
+            (nd, Ordering::NestedDissection, Some(amd))
+        } else {
+            (amd, Ordering::Amd, Some(nd))
+        },
+    )
 }
 
 /// The graph of an m × m grid Laplacian (upper-triangle pairs with the diagonal) and its

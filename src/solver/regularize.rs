@@ -62,29 +62,45 @@ impl Newton {
         if n == 0 {
             return Saddle::ZeroModesOnly;
         }
+        // The corrections' buffers are free here (each iteration recomputes them): no
+        // allocation inside the Newton loop.
+        let (mut v, mut hv) = (std::mem::take(&mut self.c), std::mem::take(&mut self.c2));
+        let saddle = self.escape_with(p, e0, &mut v, &mut hv);
+        (self.c, self.c2) = (v, hv);
+        saddle
+    }
+
+    /// [`Self::escape_saddle`] with buffers for the direction and its image.
+    fn escape_with<P: NewtonProblem>(
+        &mut self,
+        p: &mut P,
+        e0: f64,
+        v: &mut [f64],
+        hv: &mut [f64],
+    ) -> Saddle {
+        let n = v.len();
         let (s, w) = (&self.scales, &self.weights);
         // W-norm: the Euclidean norm of the dimensionless vector.
         let norm_w = |v: &[f64]| v.iter().zip(w).map(|(x, w)| w * x * x).sum::<f64>().sqrt();
         // Deterministic, generic start vector (in dimensionless unknowns).
-        let mut v: Vec<f64> = (0..n)
-            .map(|i| (1.0 + 0.5 * ((i as f64) * 0.7).sin()) * s[i])
-            .collect();
-        let mut hv = vec![0.0; n];
+        for (i, x) in v.iter_mut().enumerate() {
+            *x = (1.0 + 0.5 * ((i as f64) * 0.7).sin()) * s[i];
+        }
         let mut lambda = 0.0;
         for _ in 0..50 {
-            let nv = norm_w(&v);
+            let nv = norm_w(v);
             v.iter_mut().for_each(|x| *x /= nv);
-            self.chol.multiply(&v, &mut hv);
-            let new_lambda: f64 = v.iter().zip(&hv).map(|(a, b)| a * b).sum();
+            self.chol.multiply(v, hv);
+            let new_lambda: f64 = v.iter().zip(hv.iter()).map(|(a, b)| a * b).sum();
             let done = (new_lambda - lambda).abs() <= 1e-6 * new_lambda.abs();
             lambda = new_lambda;
             if done {
                 break;
             }
             v.iter_mut().zip(w).for_each(|(x, w)| *x *= w);
-            self.chol.solve(&mut v);
+            self.chol.solve(v);
         }
-        let nv = norm_w(&v);
+        let nv = norm_w(v);
         v.iter_mut().for_each(|x| *x /= nv);
         let scale = self.scaled_diagonal();
         if lambda >= -1e-12 * scale {
@@ -92,7 +108,7 @@ impl Newton {
         }
         // The side the problem prefers (`buckle_toward`), else a deterministic sign: largest
         // dimensionless component positive.
-        let side = p.orientation(&v);
+        let side = p.orientation(v);
         let flip = if side != 0.0 {
             side < 0.0
         } else {
@@ -104,9 +120,9 @@ impl Newton {
         if flip {
             v.iter_mut().for_each(|x| *x = -*x);
         }
-        let size = p.perturbation_size(&v);
+        let size = p.perturbation_size(v);
         v.iter_mut().for_each(|x| *x *= size);
-        let mut alpha = p.max_step(&v);
+        let mut alpha = p.max_step(v);
         let constrained = self.qp.is_some();
         for _ in 0..30 {
             if constrained {
@@ -116,9 +132,9 @@ impl Newton {
                     continue;
                 }
             }
-            let e = p.trial_energy(&v, alpha);
+            let e = p.trial_energy(v, alpha);
             if e.is_finite() && e < e0 - 1e-12 * e0.abs() {
-                p.accept(&v, alpha);
+                p.accept(v, alpha);
                 return Saddle::Escaped;
             }
             alpha *= 0.5;

@@ -1,0 +1,365 @@
+//! The symbolic analysis of a Hessian pattern (the stored upper triangle, the fill-reducing
+//! ordering and faer's symbolic factorization), done once per pattern per process: the memory
+//! estimate before a solve, the solve itself, and later solves of the same network (stages,
+//! continuation phases, stability) all take it from [`analyse`]'s cache.
+
+use std::hash::Hasher;
+use std::sync::{Arc, Mutex};
+
+use faer::perm::PermRef;
+use faer::sparse::linalg::cholesky::{
+    factorize_symbolic_cholesky, SymbolicCholesky, SymbolicCholeskyRaw, SymmetricOrdering,
+};
+use faer::sparse::SymbolicSparseColMat;
+use faer::Side;
+
+use super::linalg::symbolic_params;
+use super::ordering::{choose, Ordering};
+
+/// A pattern's symbolic analysis, shared read-only by every factorization of that pattern.
+pub struct Symbolic {
+    /// The stored upper triangle: distinct pairs, rows sorted within each column.
+    pub(super) pattern: SymbolicSparseColMat<usize>,
+    /// Position of each diagonal entry in the pattern.
+    pub(super) diag: Vec<usize>,
+    pub(super) cholesky: SymbolicCholesky<usize>,
+    /// The ordering chosen.
+    pub ordering: Ordering,
+    /// The ordering compared with it and not kept, if any (its structure is dropped).
+    pub other: Option<Compared>,
+    key: Key,
+}
+
+/// What the memory estimate needs of the ordering not kept.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+pub struct Compared {
+    pub factor_nnz: usize,
+    /// Bytes of its symbolic structure, alive while the two orderings are compared.
+    pub structure_bytes: u64,
+}
+
+/// Bytes of a symbolic factorization's structure: its row indices (supernodal: and faer's
+/// row-major copy of them) and about five words per column.
+pub fn structure_bytes(sym: &SymbolicCholesky<usize>) -> u64 {
+    let rows = match sym.raw() {
+        SymbolicCholeskyRaw::Simplicial(s) => 8 * s.row_idx().len(),
+        SymbolicCholeskyRaw::Supernodal(s) => 16 * s.row_idx().len(),
+    };
+    (rows + 40 * sym.nrows()) as u64
+}
+
+impl Symbolic {
+    pub fn cholesky(&self) -> &SymbolicCholesky<usize> {
+        &self.cholesky
+    }
+
+    /// Distinct non-zeros of the stored upper triangle.
+    pub fn hessian_nnz(&self) -> usize {
+        self.pattern.row_idx().len()
+    }
+
+    /// For each pair, its index in the stored upper triangle; `None` if some pair is not in the
+    /// pattern or some stored entry is in no pair (the pairs describe another pattern).
+    pub fn slots(&self, pairs: &[(usize, usize)]) -> Option<Vec<usize>> {
+        let (cp, ri) = (self.pattern.col_ptr(), self.pattern.row_idx());
+        let n = self.pattern.ncols();
+        let mut hit = vec![false; ri.len()];
+        let mut slots = Vec::with_capacity(pairs.len());
+        for &(r, c) in pairs {
+            if r > c || c >= n {
+                return None;
+            }
+            let k = cp[c] + ri[cp[c]..cp[c + 1]].binary_search(&r).ok()?;
+            hit[k] = true;
+            slots.push(k);
+        }
+        hit.iter().all(|&h| h).then_some(slots)
+    }
+}
+
+/// What a cached analysis was made from: the pairs' hash (verified exactly by
+/// [`Symbolic::slots`] on a hit), their count, the dimension and the ordering asked for.
+#[derive(Debug, Clone, Copy, PartialEq, Eq)]
+struct Key {
+    n: usize,
+    pairs: usize,
+    hash: u64,
+    ordering: Ordering,
+}
+
+/// Analyses kept: the networks of one job (a scene's stages, a study's levels) reuse the last
+/// few; older ones are dropped so that a sweep does not accumulate them.
+const CACHED: usize = 3;
+
+/// The analyses of the last patterns, most recently used last.
+#[derive(Default)]
+struct Cache(Vec<Arc<Symbolic>>);
+
+static CACHE: Mutex<Cache> = Mutex::new(Cache(Vec::new()));
+
+/// The analysis of the pattern `pairs` (upper-triangle pairs, duplicates allowed, every
+/// diagonal entry present) of an `n`-unknown problem with `ordering`, from the process's cache
+/// or made now (`positions`, asked only then, place the unknowns for the nested dissection),
+/// with each pair's slot. `None` where the symbolic analysis fails (index overflow).
+pub fn analyse(
+    n: usize,
+    pairs: &[(usize, usize)],
+    ordering: Ordering,
+    positions: impl FnOnce() -> Option<Vec<[f64; 3]>>,
+) -> Option<(Arc<Symbolic>, Vec<usize>)> {
+    let (s, slots) = find_or_make(n, pairs, ordering, positions)?;
+    let slots = slots.unwrap_or_else(|| s.slots(pairs).expect("the pattern holds its own pairs"));
+    Some((s, slots))
+}
+
+/// [`analyse`] without the slots (the memory estimate): a new analysis skips them.
+pub fn analyse_pattern(
+    n: usize,
+    pairs: &[(usize, usize)],
+    ordering: Ordering,
+    positions: impl FnOnce() -> Option<Vec<[f64; 3]>>,
+) -> Option<Arc<Symbolic>> {
+    find_or_make(n, pairs, ordering, positions).map(|(s, _)| s)
+}
+
+/// The cached analysis of `pairs` with their slots (the check that it is theirs), or a new one
+/// without.
+fn find_or_make(
+    n: usize,
+    pairs: &[(usize, usize)],
+    ordering: Ordering,
+    positions: impl FnOnce() -> Option<Vec<[f64; 3]>>,
+) -> Option<(Arc<Symbolic>, Option<Vec<usize>>)> {
+    let key = Key {
+        n,
+        pairs: pairs.len(),
+        hash: hash_pairs(pairs),
+        ordering,
+    };
+    let cached = CACHE.lock().unwrap_or_else(|e| e.into_inner()).take(key);
+    if let Some(s) = cached {
+        if let Some(slots) = s.slots(pairs) {
+            CACHE
+                .lock()
+                .unwrap_or_else(|e| e.into_inner())
+                .put(s.clone());
+            return Some((s, Some(slots)));
+        }
+    }
+    let s = Arc::new(analyse_uncached(n, pairs, ordering, positions, key)?);
+    CACHE
+        .lock()
+        .unwrap_or_else(|e| e.into_inner())
+        .put(s.clone());
+    Some((s, None))
+}
+
+impl Cache {
+    /// Removes and returns the analysis made under `key`.
+    fn take(&mut self, key: Key) -> Option<Arc<Symbolic>> {
+        let at = self.0.iter().position(|s| s.key == key)?;
+        Some(self.0.remove(at))
+    }
+
+    /// Keeps `s` as the most recently used, dropping the least recently used beyond [`CACHED`].
+    fn put(&mut self, s: Arc<Symbolic>) {
+        self.0.retain(|c| c.key != s.key);
+        if self.0.len() >= CACHED {
+            self.0.remove(0);
+        }
+        self.0.push(s);
+    }
+}
+
+/// The analysis with a given elimination order (position k: the unknown eliminated k-th;
+/// `None`: AMD), not cached (tests, benchmarks, small auxiliary systems).
+pub fn with_order(
+    n: usize,
+    pairs: &[(usize, usize)],
+    elimination: Option<&[usize]>,
+) -> Option<Symbolic> {
+    let key = Key {
+        n,
+        pairs: pairs.len(),
+        hash: 0,
+        ordering: Ordering::Amd,
+    };
+    let (pattern, diag) = upper_pattern(n, pairs);
+    let cholesky = symbolic_factor(&pattern, elimination)?;
+    let ordering = match elimination {
+        Some(_) => Ordering::NestedDissection,
+        None => Ordering::Amd,
+    };
+    Some(Symbolic {
+        pattern,
+        diag,
+        cholesky,
+        ordering,
+        other: None,
+        key,
+    })
+}
+
+fn analyse_uncached(
+    n: usize,
+    pairs: &[(usize, usize)],
+    ordering: Ordering,
+    positions: impl FnOnce() -> Option<Vec<[f64; 3]>>,
+    key: Key,
+) -> Option<Symbolic> {
+    let (pattern, diag) = upper_pattern(n, pairs);
+    let (cholesky, chosen, other) = choose(&pattern, ordering, positions, |order| {
+        symbolic_factor(&pattern, order)
+    })?;
+    Some(Symbolic {
+        pattern,
+        diag,
+        cholesky,
+        ordering: chosen,
+        other: other.map(|o| Compared {
+            factor_nnz: o.len_val(),
+            structure_bytes: structure_bytes(&o),
+        }),
+        key,
+    })
+}
+
+/// faer's symbolic factorization of the upper triangle `pattern` with an elimination order
+/// (`None`: AMD).
+pub(super) fn symbolic_factor(
+    pattern: &SymbolicSparseColMat<usize>,
+    elimination: Option<&[usize]>,
+) -> Option<SymbolicCholesky<usize>> {
+    let n = pattern.ncols();
+    let inverse: Vec<usize> = elimination.map_or_else(Vec::new, |fwd| {
+        let mut inv = vec![0; n];
+        for (k, &i) in fwd.iter().enumerate() {
+            inv[i] = k;
+        }
+        inv
+    });
+    let ordering = match elimination {
+        Some(fwd) => SymmetricOrdering::Custom(PermRef::new_checked(fwd, &inverse, n)),
+        None => SymmetricOrdering::Amd,
+    };
+    factorize_symbolic_cholesky(pattern.as_ref(), Side::Upper, ordering, symbolic_params()).ok()
+}
+
+/// The stored upper triangle of `pairs` (distinct, rows sorted within each column) and the
+/// position of each diagonal entry. Bucketed by column, so that only each column's few rows
+/// are sorted.
+fn upper_pattern(n: usize, pairs: &[(usize, usize)]) -> (SymbolicSparseColMat<usize>, Vec<usize>) {
+    let mut start = vec![0usize; n + 1];
+    for &(r, c) in pairs {
+        assert!(
+            r <= c && c < n,
+            "pair ({r}, {c}) outside the upper triangle"
+        );
+        start[c + 1] += 1;
+    }
+    for c in 0..n {
+        start[c + 1] += start[c];
+    }
+    let mut rows = vec![0usize; pairs.len()];
+    let mut fill = start.clone();
+    for &(r, c) in pairs {
+        rows[fill[c]] = r;
+        fill[c] += 1;
+    }
+    drop(fill);
+    let mut col_ptr = vec![0usize; n + 1];
+    let mut len = 0;
+    for c in 0..n {
+        rows[start[c]..start[c + 1]].sort_unstable();
+        let mut last = usize::MAX;
+        for k in start[c]..start[c + 1] {
+            if rows[k] != last {
+                last = rows[k];
+                rows[len] = last;
+                len += 1;
+            }
+        }
+        col_ptr[c + 1] = len;
+    }
+    rows.truncate(len);
+    rows.shrink_to_fit();
+    let diag: Vec<usize> = (0..n)
+        .map(|c| {
+            let col = &rows[col_ptr[c]..col_ptr[c + 1]];
+            col.last()
+                .filter(|&&r| r == c)
+                .map(|_| col_ptr[c + 1] - 1)
+                .expect("pattern lacks a diagonal entry")
+        })
+        .collect();
+    let pattern = SymbolicSparseColMat::new_checked(n, n, col_ptr, None, rows);
+    (pattern, diag)
+}
+
+/// A fast hash of the pairs (FxHash's multiply-rotate), to find a cached analysis; a match is
+/// then checked pair by pair.
+fn hash_pairs(pairs: &[(usize, usize)]) -> u64 {
+    struct Fx(u64);
+    impl Hasher for Fx {
+        fn finish(&self) -> u64 {
+            self.0
+        }
+        fn write(&mut self, _: &[u8]) {
+            unreachable!("only u64 words are hashed")
+        }
+        fn write_u64(&mut self, w: u64) {
+            self.0 = (self.0.rotate_left(5) ^ w).wrapping_mul(0x51_7c_c1_b7_27_22_0a_95);
+        }
+    }
+    let mut h = Fx(0);
+    for &(r, c) in pairs {
+        h.write_u64(r as u64);
+        h.write_u64(c as u64);
+    }
+    h.finish()
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// The same pairs find the same analysis in the cache; pairs of another pattern would not
+    /// pass [`Symbolic::slots`], and the least recently used analysis is dropped.
+    #[test]
+    fn an_analysis_is_found_by_its_pairs_and_checked_on_reuse() {
+        let (pairs, _) = crate::solver::ordering::grid_graph(12);
+        let n = 144;
+        let key = Key {
+            n,
+            pairs: pairs.len(),
+            hash: hash_pairs(&pairs),
+            ordering: Ordering::Amd,
+        };
+        let a = Arc::new(analyse_uncached(n, &pairs, Ordering::Amd, || None, key).unwrap());
+        let mut cache = Cache::default();
+        cache.put(a.clone());
+        let b = cache.take(key).unwrap();
+        assert!(Arc::ptr_eq(&a, &b));
+        assert!(cache.take(key).is_none());
+        let slots = a.slots(&pairs).unwrap();
+        assert_eq!(slots.len(), pairs.len());
+        assert_eq!(a.hessian_nnz(), pairs.len());
+        let mut other = pairs.clone();
+        other.pop();
+        assert!(a.slots(&other).is_none(), "an entry in no pair");
+        other.push((0, 143));
+        assert!(a.slots(&other).is_none(), "a pair not in the pattern");
+        for k in 0..=CACHED {
+            cache.put(Arc::new(
+                with_order(n, &pairs, None)
+                    .map(|mut s| {
+                        s.key.hash = k as u64;
+                        s
+                    })
+                    .unwrap(),
+            ));
+        }
+        assert_eq!(cache.0.len(), CACHED);
+        assert!(cache.0.iter().all(|s| s.key.hash != 0));
+    }
+}
