@@ -18,6 +18,8 @@ RODNET = os.environ.get("RODNET") or str(
     Path(os.environ.get("CARGO_TARGET_DIR", ROOT / "target")) / "release" / "rodnet")
 OUT = Path(os.environ.get("PEERS_OUT", HERE / "out"))
 REPS = int(os.environ.get("PEERS_REPS", "3"))
+# PyElastica's cantilever runs take minutes each: PEERS_SKIP_PYELASTICA=1 leaves them out there.
+SKIP_PYELASTICA = os.environ.get("PEERS_SKIP_PYELASTICA") == "1"
 QUICK = os.environ.get("PEERS_QUICK") == "1"  # smoke test: the first levels of each sequence only
 LONG = 60.0  # a run longer than this (s) is not repeated
 TARGETS = (1e-3, 1e-4, 1e-5)

@@ -26,7 +26,10 @@ def cantilever():
         x, y = reference.rod_tip(c.L, c.EI, c.P, **kw)
         print(f"cantilever: the {name} rod's tip differs from the elastica's by {c.error(x, y):.2e} (relative)")
     print(f"cantilever: elastica tip ({c.REF[0]:.12f}, {c.REF[1]:.12f}) m")
-    return {"rodnet": c.rodnet_runs(), "OpenSees": c.opensees_runs(), "PyElastica": c.pyelastica_runs()}
+    runs = {"rodnet": c.rodnet_runs(), "OpenSees": c.opensees_runs()}
+    if not common.SKIP_PYELASTICA:
+        runs["PyElastica"] = c.pyelastica_runs()
+    return runs
 
 
 def timoshenko():
