@@ -221,6 +221,20 @@ fn mechanism(model: &Model, rods: &[RodInfo], v: &[f64], f: &[f64]) -> Option<St
     ))
 }
 
+/// Whether some rod that moves in mode `v` does not move rigidly (a rod's spin about its own
+/// axis, which moves no node, counts as rigid).
+pub fn deforms(model: &Model, rods: &[RodInfo], v: &[f64]) -> bool {
+    let nn = model.layout.n_nodes();
+    let moves: Vec<f64> = (0..nn).map(|n| norm(motion(model, v, n))).collect();
+    let vmax = max(&moves);
+    if vmax == 0.0 {
+        return false;
+    }
+    rods.iter()
+        .filter(|r| r.nodes.iter().any(|&n| moves[n] > 1e-3 * vmax))
+        .any(|r| rigid_fit(model, v, &r.nodes).is_none_or(|(_, res)| res > RIGID))
+}
+
 fn max(v: &[f64]) -> f64 {
     v.iter().cloned().fold(0.0, f64::max)
 }

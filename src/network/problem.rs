@@ -278,6 +278,9 @@ impl NewtonProblem for NetworkProblem<'_> {
     fn gauge_only(&mut self, modes: &[Vec<f64>]) -> bool {
         crate::network::mechanism::gauge_only(self.model, self.gauge_node, modes)
     }
+    fn deforms(&mut self, mode: &[f64]) -> bool {
+        crate::network::mechanism::deforms(self.model, self.rods, mode)
+    }
     fn orientation(&self, direction: &[f64]) -> f64 {
         let Some(t) = self.toward else { return 0.0 };
         let m = &*self.model;

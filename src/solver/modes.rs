@@ -19,7 +19,8 @@ impl Newton {
     /// A mode counts as zero only while its eigenvalue is not resolved from zero
     /// (`spectrum::zero_band`): a slender rod's softest bending modes fall below 1e-10 of the
     /// scale (the stretch stiffness) at fine discretizations, and a clamped cantilever with
-    /// r/L = 1e-3 was called neutral from 320 edges on.
+    /// r/L = 1e-3 was called neutral from 320 edges on (and, with the gradient's share of the
+    /// band applied to modes that deform rods, still at 1280).
     pub(super) fn gauge_modes_only<P: super::NewtonProblem>(&mut self, p: &mut P) -> bool {
         let scale = self.scaled_diagonal().max(f64::MIN_POSITIVE);
         let w = &self.weights;
@@ -37,7 +38,10 @@ impl Newton {
             let r2: f64 = (0..hv.len())
                 .map(|i| (hv[i] - l * scale * w[i] * u[i]).powi(2) / w[i])
                 .sum();
-            if l.abs() * scale < super::spectrum::zero_band(r2.sqrt(), gradient, scale) {
+            // The gradient's share of the band is for a symmetry's zero mode, lifted by a state
+            // off equilibrium; a mode that deforms its rods is no symmetry's.
+            let g = if p.deforms(&u) { 0.0 } else { gradient };
+            if l.abs() * scale < super::spectrum::zero_band(r2.sqrt(), g, scale) {
                 zero.push(u);
             }
         }

@@ -102,6 +102,11 @@ pub trait NewtonProblem {
     fn gauge_only(&mut self, _modes: &[Vec<f64>]) -> bool {
         false
     }
+    /// Whether `mode` deforms the structure (some part that moves in it does not move
+    /// rigidly): then it is no symmetry's zero mode. Default false (unknown).
+    fn deforms(&mut self, _mode: &[f64]) -> bool {
+        false
+    }
     /// Size of a perturbation along `direction` that is small for the problem's geometry.
     fn perturbation_size(&self, direction: &[f64]) -> f64;
     /// Characteristic size of each free unknown in its own unit (a length for positions, 1 for
