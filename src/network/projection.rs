@@ -20,8 +20,9 @@ pub struct Projector {
     /// signs, recorded as (slot, e, f, node, sign product).
     diag: Vec<usize>,
     offdiag: Vec<(usize, usize, usize, usize, f64)>,
-    /// Scratch of [`Self::correction`]: each edge's moved tangent and length excess (kept so
-    /// that Newton iterations do not allocate).
+    /// Scratch of [`Self::correction`] and [`Self::restore_lengths`]: each edge's (moved)
+    /// tangent and length excess (kept so that Newton iterations and the predictor's passes do
+    /// not allocate).
     tn: Vec<[f64; 3]>,
     s: Vec<f64>,
 }
@@ -109,9 +110,7 @@ impl Projector {
         lengths: &[f64],
         c: &mut [f64],
     ) -> Option<f64> {
-        let ne = edge_nodes.len();
-        let mut tn = vec![[0.0; 3]; ne];
-        let mut s = vec![0.0; ne];
+        let (mut tn, mut s) = (std::mem::take(&mut self.tn), std::mem::take(&mut self.s));
         let mut worst = 0.0_f64;
         for (e, &[a, b]) in edge_nodes.iter().enumerate() {
             let ev = sub(u.layout.position(q, b), u.layout.position(q, a));
@@ -121,11 +120,10 @@ impl Projector {
             worst = worst.max(s[e].abs() / l);
         }
         c.iter_mut().for_each(|v| *v = 0.0);
-        if !worst.is_finite() || worst <= 1e-14 {
-            return None;
-        }
-        self.min_norm(u, edge_nodes, &tn, &mut s, c)
-            .then_some(worst)
+        let moved =
+            worst.is_finite() && worst > 1e-14 && self.min_norm(u, edge_nodes, &tn, &mut s, c);
+        (self.tn, self.s) = (tn, s);
+        moved.then_some(worst)
     }
 
     /// c = −Aᵀ(AAᵀ + δI)⁻¹ s, A the rows t'_e·(c_b − c_a) over free unknowns.
