@@ -195,11 +195,8 @@ fn mechanism(model: &Model, rods: &[RodInfo], v: &[f64], f: &[f64]) -> Option<St
         .filter(|r| r.nodes.iter().any(|&n| moving(n)))
         .collect();
     // Every moving rod moves rigidly: otherwise this is a soft elastic mode, not a mechanism.
-    for r in &moving_rods {
-        let (_, residual) = rigid_fit(model, v, &r.nodes)?;
-        if residual > RIGID {
-            return None;
-        }
+    if !moving_rods.iter().all(|r| moves_rigidly(model, v, r)) {
+        return None;
     }
     let names: Vec<String> = moving_rods
         .iter()
@@ -232,7 +229,12 @@ pub fn deforms(model: &Model, rods: &[RodInfo], v: &[f64]) -> bool {
     }
     rods.iter()
         .filter(|r| r.nodes.iter().any(|&n| moves[n] > 1e-3 * vmax))
-        .any(|r| rigid_fit(model, v, &r.nodes).is_none_or(|(_, res)| res > RIGID))
+        .any(|r| !moves_rigidly(model, v, r))
+}
+
+/// Whether rod `r` moves rigidly in mode `v` (a rigid-motion fit with residual within RIGID).
+fn moves_rigidly(model: &Model, v: &[f64], r: &RodInfo) -> bool {
+    rigid_fit(model, v, &r.nodes).is_some_and(|(_, res)| res <= RIGID)
 }
 
 fn max(v: &[f64]) -> f64 {
