@@ -23,31 +23,39 @@ impl Newton {
     /// band applied to modes that deform rods, still at 1280).
     pub(super) fn gauge_modes_only<P: super::NewtonProblem>(&mut self, p: &mut P) -> bool {
         let scale = self.scaled_diagonal().max(f64::MIN_POSITIVE);
-        let w = &self.weights;
-        let gradient = (0..self.g.len())
-            .map(|i| self.g[i] * self.g[i] / w[i])
-            .sum::<f64>()
-            .sqrt();
-        let pairs = self.lowest_modes(4);
+        let gradient = self.gradient_norm();
         let mut hv = vec![0.0; self.g.len()];
         let mut zero = Vec::new();
-        for (l, u) in pairs {
-            self.chol.multiply(&u, &mut hv);
-            let w = &self.weights;
-            // ‖Hu − λWu‖ in the W⁻¹ norm, λ here relative to the scale.
-            let r2: f64 = (0..hv.len())
-                .map(|i| (hv[i] - l * scale * w[i] * u[i]).powi(2) / w[i])
-                .sum();
+        for (l, u) in self.lowest_modes(4) {
+            let residual = self.ritz_residual(l * scale, &u, &mut hv);
             // The gradient's share of the band is for a symmetry's zero mode, lifted by a state
             // off equilibrium; a mode that deforms its rods is no symmetry's.
             let g = if p.deforms(&u) { 0.0 } else { gradient };
-            if l.abs() * scale < super::spectrum::zero_band(r2.sqrt(), g, scale) {
+            if l.abs() * scale < super::spectrum::zero_band(residual, g, scale) {
                 zero.push(u);
             }
         }
         let gauge = zero.is_empty() || p.gauge_only(&zero);
         self.report.zero_modes = if gauge { 0 } else { zero.len() };
         gauge
+    }
+
+    /// ‖g‖ in the W⁻¹ norm (the gradient's size in the solver's metric).
+    pub(super) fn gradient_norm(&self) -> f64 {
+        let (g, w) = (&self.g, &self.weights);
+        (0..g.len()).map(|i| g[i] * g[i] / w[i]).sum::<f64>().sqrt()
+    }
+
+    /// ‖Hu − λWu‖ in the W⁻¹ norm for the W-unit pair (λ, u), λ absolute: the dual norm of its
+    /// Ritz residual (an eigenvalue of H lies within it). Needs `chol`'s values holding H;
+    /// `hv` is scratch.
+    pub(super) fn ritz_residual(&mut self, lambda: f64, u: &[f64], hv: &mut [f64]) -> f64 {
+        self.chol.multiply(u, hv);
+        let w = &self.weights;
+        (0..hv.len())
+            .map(|i| (hv[i] - lambda * w[i] * u[i]).powi(2) / w[i])
+            .sum::<f64>()
+            .sqrt()
     }
 
     /// Whether the full loads make a rigid turn of an unsupported structure unstable at its

@@ -80,7 +80,6 @@ pub fn lowest_modes<P: NewtonProblem>(
         .factor_regularized()
         .ok_or("the Hessian could not be factored even with a shift")?;
     let scale = nt.scaled_diagonal().max(f64::MIN_POSITIVE);
-    let w = nt.weights.clone();
     let settled = |now: &[f64], last: &[f64]| {
         now.iter()
             .zip(last)
@@ -90,16 +89,12 @@ pub fn lowest_modes<P: NewtonProblem>(
     let (pairs, rounds, converged) = (ritz.pairs, ritz.rounds, ritz.settled);
     let mut hv = vec![0.0; n];
     let mut residual: f64 = 0.0;
-    let gradient = (0..n).map(|i| nt.g[i] * nt.g[i] / w[i]).sum::<f64>().sqrt();
+    let gradient = nt.gradient_norm();
     let mut band = Vec::with_capacity(pairs.len());
     for (l, u) in &pairs {
-        nt.chol.multiply(u, &mut hv);
-        // ‖r‖ in the W⁻¹ norm, r = Hu − λWu: the dual norm of the W-unit vector u.
-        let r2: f64 = (0..n)
-            .map(|i| (hv[i] - l * w[i] * u[i]).powi(2) / w[i])
-            .sum();
-        residual = residual.max(r2.sqrt() / scale);
-        band.push(zero_band(r2.sqrt(), gradient, scale));
+        let r = nt.ritz_residual(*l, u, &mut hv);
+        residual = residual.max(r / scale);
+        band.push(zero_band(r, gradient, scale));
     }
     Ok(Spectrum {
         values: pairs.iter().map(|p| p.0).collect(),
