@@ -52,26 +52,9 @@ impl BendTwist {
 }
 
 impl Term<11> for BendTwist {
-    /// The category of the first part; see [`Term::CATEGORIES`].
-    const CATEGORY: Category = Category::Bend;
-    const CATEGORIES: &'static [Category] = &[Category::Bend, Category::Twist];
-    fn vars(&self) -> &[usize; 11] {
-        &self.bend.vars
-    }
+    super::bend_twist_items!();
     fn edge(&self) -> Option<usize> {
         Some(self.bend.edges[0])
-    }
-    fn remembered(&self, st: &State) -> Option<(usize, f64)> {
-        self.twist.remembered(st)
-    }
-    fn eval<T: Real>(&self, st: &State, x: &[T; 11]) -> T {
-        let [b, t] = self.energies(st, x);
-        b + t
-    }
-    fn energies_by_category(&self, st: &State, out: &mut [f64]) {
-        let [b, t] = self.energies::<f64>(st, &self.gather(&st.q));
-        out[0] += b;
-        out[1] += t;
     }
     fn derivatives(&self, st: &State, x: &[f64; 11]) -> HD<11> {
         let y = super::reduce(&STENCIL_MAP, x);

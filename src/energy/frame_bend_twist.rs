@@ -108,26 +108,9 @@ impl FrameBendTwist {
 }
 
 impl Term<11> for FrameBendTwist {
-    /// The category of the first part; see [`Term::CATEGORIES`].
-    const CATEGORY: Category = Category::Bend;
-    const CATEGORIES: &'static [Category] = &[Category::Bend, Category::Twist];
-    fn vars(&self) -> &[usize; 11] {
-        &self.bend.vars
-    }
+    super::bend_twist_items!();
     fn edge(&self) -> Option<usize> {
         Some(self.bend.edge)
-    }
-    fn remembered(&self, st: &State) -> Option<(usize, f64)> {
-        self.twist.remembered(st)
-    }
-    fn eval<T: Real>(&self, st: &State, x: &[T; 11]) -> T {
-        let [b, t] = self.energies(st, x);
-        b + t
-    }
-    fn energies_by_category(&self, st: &State, out: &mut [f64]) {
-        let [b, t] = self.energies::<f64>(st, &self.gather(&st.q));
-        out[0] += b;
-        out[1] += t;
     }
     /// The port frame is differentiated in (ω, α), the edge frame in the edge vector, their
     /// products in both (block-structured: `separable_dot`), the energy in (intermediates, θ).

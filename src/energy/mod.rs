@@ -153,6 +153,33 @@ macro_rules! reduced_term {
 }
 pub(crate) use reduced_term;
 
+/// The [`Term`] items shared by the fused bend + twist terms (fields `bend` and `twist`, and
+/// `energies` returning [bend, twist]): vars and categories, the remembered reference twist,
+/// and the energy reported by category.
+macro_rules! bend_twist_items {
+    () => {
+        /// The category of the first part; see [`Term::CATEGORIES`].
+        const CATEGORY: Category = Category::Bend;
+        const CATEGORIES: &'static [Category] = &[Category::Bend, Category::Twist];
+        fn vars(&self) -> &[usize; 11] {
+            &self.bend.vars
+        }
+        fn remembered(&self, st: &State) -> Option<(usize, f64)> {
+            self.twist.remembered(st)
+        }
+        fn eval<T: Real>(&self, st: &State, x: &[T; 11]) -> T {
+            let [b, t] = self.energies(st, x);
+            b + t
+        }
+        fn energies_by_category(&self, st: &State, out: &mut [f64]) {
+            let [b, t] = self.energies::<f64>(st, &self.gather(&st.q));
+            out[0] += b;
+            out[1] += t;
+        }
+    };
+}
+pub(crate) use bend_twist_items;
+
 /// Map rows for "x[b..b+3] − x[a..a+3]" (edge vectors).
 pub(crate) const fn diff3(a: usize, b: usize) -> [[(usize, f64); 2]; 3] {
     [
