@@ -144,15 +144,18 @@ impl NewtonProblem for NetworkProblem<'_> {
         m.commit();
     }
     fn predict(&mut self, from: &State, factor: f64, lambda: f64) {
-        if self.bias.is_empty() {
+        if self.bias.is_empty() && self.model.contact.is_some() {
+            // Contact's projection of the prediction (in `extrapolate`) and the length
+            // projection would undo each other: rod_over_sphere did not converge in 1000.
             self.extrapolate(from, factor);
             self.set_continuation(lambda);
             return;
         }
-        // On a buckling path edges turn far more than they stretch, and a linearly extrapolated
-        // turn lengthens an edge to second order, which the stiff stretch terms punish: the
-        // prediction is projected back onto lengths extrapolated like the positions (kept by
-        // an inextensible structure, followed by a stretching one).
+        // Edges turn far more than they stretch (on a buckling path and on any large-deflection
+        // path of slender rods), and a linearly extrapolated turn lengthens an edge to second
+        // order, which the stiff stretch terms punish: the prediction is projected back onto
+        // lengths extrapolated like the positions (kept by an inextensible structure, followed
+        // by a stretching one).
         let now = self.model.edge_lengths_of(&self.model.state.q);
         let before = self.model.edge_lengths_of(&from.q);
         let lengths: Vec<f64> = now
@@ -299,21 +302,15 @@ impl NewtonProblem for NetworkProblem<'_> {
     fn bias(&self) -> &[f64] {
         &self.bias
     }
-    fn excess_force(&mut self, step: &[f64], f: &mut [f64]) -> bool {
+    fn excess_force(&mut self, trial: &[f64], linear: (&[f64], f64), f: &mut [f64]) -> f64 {
         let m = &*self.model;
         let k = m
             .terms
             .stretch
             .iter()
             .map(|s| (s.edge, s.ea / s.rest_length));
-        crate::network::projection::excess_force(
-            m.unknowns(),
-            &m.edge_nodes,
-            k,
-            &m.state.q,
-            step,
-            f,
-        )
+        let u = m.unknowns();
+        crate::network::projection::excess_force(u, &m.edge_nodes, k, &m.state.q, trial, linear, f)
     }
     fn limit_correction(&self, step: &[f64], c: &mut [f64]) {
         let m = &*self.model;

@@ -177,34 +177,40 @@ impl Projector {
     }
 }
 
-/// The stretch force that the first-order error of step `d` would create: for each stretched
-/// edge, k·s along the moved tangent, with s the excess of the moved edge's length over its
-/// linearized length and k = EA/l̄ (its axial stiffness). The solver maps it through the
-/// (regularized) Hessian, c = −H⁻¹f, which restores the lengths with the least energy of the
-/// Newton model instead of the least Euclidean motion. Returns false when there is nothing to
-/// correct.
+/// The stretch force that the higher-order length error of a step would create. For each edge,
+/// k·s along its current tangent, with k = EA/l̄ (its axial stiffness) and s the excess of its
+/// length after `trial` over the length that the linearization of `alpha · d` gives:
+/// s = |e + Δe_trial| − (|e| + α t·Δe_d). The solver maps it through the (regularized) Hessian,
+/// c = −H⁻¹f, which restores the lengths with the least energy of the Newton model instead of
+/// the least Euclidean motion: with `trial` = d it gives the step's second-order correction,
+/// with a corrected trial point the correction's own remaining error (`solver/step.rs`).
+/// Returns the energy ½Σk·s² of the excess, 0 when every excess is at round-off.
 pub fn excess_force(
     u: Unknowns,
     edge_nodes: &[[usize; 2]],
     stiffness: impl Iterator<Item = (usize, f64)>,
     q: &[f64],
-    d: &[f64],
+    trial: &[f64],
+    (d, alpha): (&[f64], f64),
     f: &mut [f64],
-) -> bool {
-    let step = |n: usize| std::array::from_fn(|k| u.of_node(n, k).map_or(0.0, |i| d[i]));
+) -> f64 {
+    let at = |v: &[f64], n: usize| -> [f64; 3] {
+        std::array::from_fn(|k| u.of_node(n, k).map_or(0.0, |i| v[i]))
+    };
     f.iter_mut().for_each(|v| *v = 0.0);
-    let mut any = false;
+    let mut energy = 0.0;
     for (e, k) in stiffness {
         let [a, b] = edge_nodes[e];
         let ev = sub(u.layout.position(q, b), u.layout.position(q, a));
-        let de = sub(step(b), step(a));
+        let de = sub(at(trial, b), at(trial, a));
         let l = norm(ev);
         let moved = [ev[0] + de[0], ev[1] + de[1], ev[2] + de[2]];
-        let s = norm(moved) - (l + dot(ev, de) / l);
+        let linear = l + alpha * dot(ev, sub(at(d, b), at(d, a))) / l;
+        let s = norm(moved) - linear;
         if s.abs() <= 1e-14 * l {
             continue;
         }
-        any = true;
+        energy += 0.5 * k * s * s;
         // Along the current tangent: the Hessian's axial stiffness acts there, and a component
         // across it would be met by bending stiffness alone.
         let t = scalef(ev, 1.0 / l);
@@ -217,5 +223,5 @@ pub fn excess_force(
             }
         }
     }
-    any
+    energy
 }

@@ -22,6 +22,7 @@ use super::problem::NewtonProblem;
 use super::qp::StepQp;
 use super::regularize::Saddle;
 use super::settings::{NewtonReport, NewtonSettings};
+use super::step::repair_lengths;
 
 /// Relative residual below which a full Newton step on a positive definite Hessian may be
 /// accepted for reducing the residual when the Armijo test cannot resolve the energy change.
@@ -80,6 +81,8 @@ pub(super) struct Newton {
     /// A second candidate correction (see `corrections`).
     pub(super) c2: Vec<f64>,
     pub(super) trial: Vec<f64>,
+    /// Scratch force of the line search's length repair (`step.rs::repair_lengths`).
+    pub(super) f_repair: Vec<f64>,
     /// Scratch gradient for judging a full step by its residual.
     pub(super) g_trial: Vec<f64>,
     /// Characteristic size s of each unknown (`NewtonProblem::unknown_scales`) and the shift
@@ -107,6 +110,7 @@ impl Newton {
             c: vec![0.0; n],
             c2: vec![0.0; n],
             trial: vec![0.0; n],
+            f_repair: vec![0.0; n],
             g_trial: vec![0.0; n],
             scales: vec![1.0; n],
             weights: vec![1.0; n],
@@ -130,6 +134,7 @@ impl Newton {
         let mut indefinite = 0;
         let mut last_res = f64::INFINITY;
         let mut last_energy = f64::INFINITY;
+        let mut prev_energy = f64::INFINITY;
         let mut floor: Option<f64> = None;
         loop {
             let e0 = p.assemble(&mut self.g, Some(&mut self.chol.values));
@@ -202,7 +207,7 @@ impl Newton {
                     }
                 }
             }
-            if it >= lim.cap && res < floor {
+            if it >= lim.cap && res < floor && (stalled || it >= lim.extended_cap) {
                 // Below the round-off floor Newton may still creep; that is as far as it goes.
                 return Outcome::AtFloor;
             }
@@ -212,7 +217,11 @@ impl Newton {
                     lim.tolerance
                 ))
             };
-            let at_cap = it >= lim.cap;
+            // Below the floor and still halving the residual, Newton is in its quadratic phase:
+            // the residual no longer sees errors along soft modes (on a slender cantilever,
+            // 1e-9 of the tip position is 1e-9 of the force scale), and the step that the cap
+            // would cut short is the one that removes them.
+            let at_cap = it >= lim.cap && res >= floor;
             if at_cap && (it >= lim.extended_cap || self.qp.is_some()) {
                 return budget();
             }
@@ -240,9 +249,15 @@ impl Newton {
             } else {
                 0
             };
-            if at_cap && !self.converging(e0, last_energy, shift) {
+            let recent = if prev_energy.is_finite() {
+                (prev_energy, 2.0)
+            } else {
+                (last_energy, 1.0)
+            };
+            if at_cap && !self.converging(e0, recent, shift) {
                 return budget();
             }
+            prev_energy = last_energy;
             last_energy = e0;
             let curves = self.corrections(p, shift);
             match self.search(p, e0, shift, res, curves) {
@@ -269,12 +284,16 @@ impl Newton {
 
     /// Whether the attempt is converging: the quadratic model's remaining decrease from the
     /// energy `e0` along the step in `d`, ½·|gᵀd|, is at most `CONVERGING_ITERATIONS` times
-    /// the last iteration's decrease (from `last_energy`). The model is trusted where the
+    /// the mean decrease of the last `its` iterations (from `last_energy`). Two iterations, not
+    /// one: near the round-off floor of a very slender rod a single iteration's decrease is
+    /// noisy, and one short iteration (r/L = 1e-5: 4e-14 J after 2e-12 J) had a full-load
+    /// attempt that was 3e-13 J from its equilibrium retried from a quarter of the load
+    /// (28 iterations instead of 14). The model is trusted where the
     /// shift carries at most a tenth of the step's curvature dᵀ(H + τW)d = −gᵀd; beyond, the
     /// Hessian is indefinite along the step and the model says nothing of the distance left.
-    fn converging(&self, e0: f64, last_energy: f64, shift: f64) -> bool {
+    fn converging(&self, e0: f64, (last_energy, its): (f64, f64), shift: f64) -> bool {
         let slope: f64 = self.g.iter().zip(&self.d).map(|(a, b)| a * b).sum();
-        let decrease = last_energy - e0;
+        let decrease = (last_energy - e0) / its;
         self.shift_share(shift) <= 0.1
             && decrease > 0.0
             && -0.5 * slope <= CONVERGING_ITERATIONS * decrease
@@ -318,10 +337,15 @@ impl Newton {
             slope,
             constrained: self.qp.is_some(),
         };
+        let (chol, f) = (&mut self.chol, &mut self.f_repair[..]);
+        let mut repair = |p: &mut P, trial: &mut [f64], alpha: f64| {
+            repair_lengths(p, (&mut *chol, &mut *f), (search.d, slope), alpha, trial)
+        };
         let alpha = search.run(
             p,
             &mut self.trial,
             trust.map(|r| (r, &mut self.g_trial[..])),
+            &mut repair,
         )?;
         p.accept(&self.trial, 1.0);
         Some(alpha)

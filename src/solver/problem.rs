@@ -45,10 +45,13 @@ pub trait NewtonProblem {
     fn step_correction(&mut self, _step: &[f64], _c: &mut [f64]) -> bool {
         false
     }
-    /// The force that the higher-order error of `step` would create in the stiffest terms
-    /// (stretch); the solver corrects the step by c = −H⁻¹f. False if none.
-    fn excess_force(&mut self, _step: &[f64], _f: &mut [f64]) -> bool {
-        false
+    /// The force that the higher-order length error of the trial step `trial` would create in
+    /// the stiffest terms (stretch), measured against the lengths that the linearization of
+    /// `linear` = (d, α), the step α·d, gives; returns its energy (0: nothing to correct). The
+    /// solver corrects by c = −H⁻¹f: with `trial` = d, α = 1, the step's second-order
+    /// correction; with a corrected trial point, that correction's remaining error.
+    fn excess_force(&mut self, _trial: &[f64], _linear: (&[f64], f64), _f: &mut [f64]) -> f64 {
+        0.0
     }
     /// Limits a correction so that the corrected step stays admissible (contact).
     fn limit_correction(&self, _step: &[f64], _c: &mut [f64]) {}
