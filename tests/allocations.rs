@@ -73,7 +73,8 @@ fn allocations_per_iteration(name: &str) -> (Vec<usize>, usize) {
     (counts, s.report.retries)
 }
 
-/// A gridshell lift, a buckled strip and a post-buckled column (corrections, regularized
+/// A gridshell lift, a buckled strip, a post-buckled column and a straight rod closed into a
+/// ring by its clamps (corrections, length repairs, regularized
 /// steps, saddle escapes, sub-steps and retries). A solve builds its length projector in the
 /// first iteration that needs one; after it, allocations are only those of retried sub-steps
 /// (their failure message and the next sub-step's snapshot; before, every iteration allocated
@@ -84,9 +85,12 @@ fn newton_iterations_do_not_allocate() {
         "hemisphere_lift_n4",
         "buckled_strip",
         "euler_column_postbuckled",
+        "extreme/ring",
     ] {
         let (counts, retries) = allocations_per_iteration(name);
-        assert!(counts.len() > 30, "{name}: {} iterations", counts.len());
+        // Enough iterations to see the loop's steady state (28 for the strip, 48–112 for the
+        // others since the line search repairs lengths).
+        assert!(counts.len() > 20, "{name}: {} iterations", counts.len());
         let later: usize = counts[1..].iter().sum();
         assert!(
             later <= 20 * retries,

@@ -10,6 +10,7 @@
 use crate::network::model::Model;
 use crate::network::problem::NetworkProblem;
 use crate::network::Network;
+use crate::solver::continuation::INTERMEDIATE_TOLERANCE;
 use crate::solver::{NewtonReport, NewtonSettings};
 
 /// Total bias force over the force scale: small against the loads that shape the structure,
@@ -28,7 +29,10 @@ pub fn solve(
     let bias = bias_forces(&net.model, t);
     let mut p = NetworkProblem::of_network(net);
     p.set_bias(bias, Some(t));
-    let biased = p.solve(settings);
+    // The biased path ends where the bias-free equilibration starts, which converges to the
+    // tolerance asked: the path's last sub-step needs only an intermediate sub-step's.
+    let loose = settings.tolerance.max(INTERMEDIATE_TOLERANCE);
+    let biased = p.solve(&settings.clone().tolerance(loose));
     if !biased.converged && !biased.stopped_at_floor {
         return biased;
     }

@@ -119,6 +119,41 @@ fn subtract(grad: &mut [f64], b: &[f64]) {
     grad.iter_mut().zip(b).for_each(|(g, b)| *g -= b);
 }
 
+impl NetworkProblem<'_> {
+    /// Moves the free nodes onto the edge lengths `lengths` (Gauss–Newton passes of the
+    /// minimal-motion projection, to `PREDICTOR_LENGTH_ERROR`; passes that end worse than they
+    /// started are undone).
+    fn project_lengths(&mut self, lengths: &[f64]) {
+        let m = &*self.model;
+        let proj = self
+            .projector
+            .get_or_insert_with(|| Projector::new(m.unknowns(), &m.edge_nodes));
+        let mut c = vec![0.0; m.n_free];
+        let saved = self.model.state.q.clone();
+        let mut first = None;
+        for pass in 0..=PREDICTOR_PROJECTIONS {
+            let m = &mut *self.model;
+            let u = m.unknowns();
+            let err = match proj.restore_lengths(u, &m.edge_nodes, &m.state.q, lengths, &mut c) {
+                Some(err) if err > PREDICTOR_LENGTH_ERROR => err,
+                _ => break,
+            };
+            // Far from the lengths (supports moved by a large fraction of an edge) the
+            // linearized passes wander before they converge.
+            let start = *first.get_or_insert(err);
+            if pass == PREDICTOR_PROJECTIONS {
+                if err > start {
+                    m.state.q.copy_from_slice(&saved);
+                    m.commit();
+                }
+                break;
+            }
+            m.displace(&c, 1.0);
+            m.commit();
+        }
+    }
+}
+
 impl NewtonProblem for NetworkProblem<'_> {
     type Snapshot = State;
     fn snapshot(&self) -> State {
@@ -165,33 +200,13 @@ impl NewtonProblem for NetworkProblem<'_> {
             .collect();
         self.extrapolate(from, factor);
         self.set_continuation(lambda);
-        let m = &*self.model;
-        let proj = self
-            .projector
-            .get_or_insert_with(|| Projector::new(m.unknowns(), &m.edge_nodes));
-        let mut c = vec![0.0; m.n_free];
-        let saved = self.model.state.q.clone();
-        let mut first = None;
-        for pass in 0..=PREDICTOR_PROJECTIONS {
-            let m = &mut *self.model;
-            let u = m.unknowns();
-            let err = match proj.restore_lengths(u, &m.edge_nodes, &m.state.q, &lengths, &mut c) {
-                Some(err) if err > PREDICTOR_LENGTH_ERROR => err,
-                _ => break,
-            };
-            // Far from the lengths (supports moved by a large fraction of an edge) the
-            // linearized passes wander before they converge; passes that end worse than they
-            // started are undone.
-            let start = *first.get_or_insert(err);
-            if pass == PREDICTOR_PROJECTIONS {
-                if err > start {
-                    m.state.q.copy_from_slice(&saved);
-                    m.commit();
-                }
-                break;
-            }
-            m.displace(&c, 1.0);
-            m.commit();
+        self.project_lengths(&lengths);
+    }
+    fn keep_lengths(&mut self, of: &State) {
+        // Not with contact, for the reason given in `predict`.
+        if self.model.contact.is_none() {
+            let lengths = self.model.edge_lengths_of(&of.q);
+            self.project_lengths(&lengths);
         }
     }
     fn residual_floor(&mut self, grad: &[f64]) -> f64 {

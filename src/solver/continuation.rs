@@ -221,7 +221,7 @@ impl Path {
                         self.inc = (0.25 * self.inc).max(MIN_INCREMENT);
                         continue;
                     }
-                    Ok(_) => {}
+                    Ok(_) => p.keep_lengths(&saved),
                 },
             }
             let minimal = self.inc <= MIN_INCREMENT * 1.0001;

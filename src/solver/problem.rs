@@ -24,6 +24,9 @@ pub trait NewtonProblem {
         self.extrapolate(from, factor);
         self.set_continuation(lambda);
     }
+    /// Restores what the first (linear-response) prediction of a path breaks: the lengths of
+    /// the edges at the snapshot `of` (the path's start). Default: nothing.
+    fn keep_lengths(&mut self, _of: &Self::Snapshot) {}
     /// Relative residual below which round-off dominates (see `relative_residual`).
     /// (`grad`: the gradient at the current iterate.)
     fn residual_floor(&mut self, grad: &[f64]) -> f64;
