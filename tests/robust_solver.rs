@@ -242,8 +242,10 @@ fn square_gridshell_buckles_toward_the_side_asked() {
 
 /// The hemisphere's own flat footprint (`--scene-out`, n = 12, K = 8), solved as a user would
 /// with only `buckle_toward` added, rises to the built-in job's dome (same energy), or to its
-/// mirror image; the buckling path (√λ parameter, lift, length-keeping predictor) takes it
-/// there in well under the 240 iterations of a plain load path.
+/// mirror image; the buckling path (√λ parameter, lift, length-keeping predictions, the first
+/// one included, and the line search's length repair) takes it there in 25 Newton iterations,
+/// against 240 on a plain load path, 38 before the repair and the first prediction's
+/// projection, and 9 on the built-in cap-net path.
 #[test]
 fn hemisphere_footprint_rises_toward_the_side_asked() {
     let d = tmpdir("footprint");
@@ -292,7 +294,7 @@ fn hemisphere_footprint_rises_toward_the_side_asked() {
         let apex = if z > 0.0 { hi } else { -lo };
         assert!(apex > 0.9 && (hi + lo) * z > 0.0, "{z}: z in [{lo}, {hi}]");
         assert!(
-            sol.report.iterations <= 120,
+            sol.report.iterations <= 30,
             "{z}: {} iterations",
             sol.report.iterations
         );
