@@ -12,8 +12,9 @@ use super::problem::NewtonProblem;
 /// a repaired point need only beat its own curve's plain point (it is the same point with less
 /// stretch, and kept only where that lowers the energy: on the twisted ring of `michell.ron`
 /// the repair alone, without that comparison, cost 132 → 172–231 iterations). The accepted
-/// step is left in `trial`. Near convergence the energy decrease
-/// falls below round-off; a relative slack of a few ulps lets Newton finish there.
+/// step is left in `trial` (`kept`: scratch for the best repaired point). Near convergence the
+/// energy decrease falls below round-off; a relative slack of a few ulps lets Newton finish
+/// there.
 ///
 /// `trust` = (relative residual, scratch gradient) when the full step is a Newton step on a
 /// positive definite Hessian near convergence. If the full step then fails the Armijo test, it
@@ -58,7 +59,7 @@ impl Search<'_> {
     pub fn run<P: NewtonProblem>(
         &self,
         p: &mut P,
-        trial: &mut [f64],
+        (trial, kept): (&mut [f64], &mut [f64]),
         mut trust: Option<(f64, &mut [f64])>,
         repair: &mut impl FnMut(&mut P, &mut [f64], f64) -> bool,
     ) -> Option<f64> {
@@ -87,6 +88,9 @@ impl Search<'_> {
                         && best.is_none_or(|(bk, _, b)| e < b - margin(bk) * (self.e0 - b).abs())
                     {
                         best = Some((k, repaired, e));
+                        if repaired {
+                            kept.copy_from_slice(trial);
+                        }
                     }
                     if k == 0 && !repaired && best.is_none() {
                         if let Some((res, g)) = trust.take() {
@@ -101,9 +105,10 @@ impl Search<'_> {
                 }
             }
             if let Some((k, repaired, _)) = best {
-                self.fill(k, alpha, trial);
                 if repaired {
-                    repair(p, trial, alpha);
+                    trial.copy_from_slice(kept);
+                } else {
+                    self.fill(k, alpha, trial);
                 }
                 return Some(alpha);
             }

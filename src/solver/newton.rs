@@ -81,8 +81,10 @@ pub(super) struct Newton {
     /// A second candidate correction (see `corrections`).
     pub(super) c2: Vec<f64>,
     pub(super) trial: Vec<f64>,
-    /// Scratch force of the line search's length repair (`step.rs::repair_lengths`).
+    /// Scratch force of the line search's length repair (`step.rs::repair_lengths`) and the
+    /// best repaired trial point.
     pub(super) f_repair: Vec<f64>,
+    pub(super) c_repaired: Vec<f64>,
     /// Scratch gradient for judging a full step by its residual.
     pub(super) g_trial: Vec<f64>,
     /// Characteristic size s of each unknown (`NewtonProblem::unknown_scales`) and the shift
@@ -111,6 +113,7 @@ impl Newton {
             c2: vec![0.0; n],
             trial: vec![0.0; n],
             f_repair: vec![0.0; n],
+            c_repaired: vec![0.0; n],
             g_trial: vec![0.0; n],
             scales: vec![1.0; n],
             weights: vec![1.0; n],
@@ -337,13 +340,14 @@ impl Newton {
             slope,
             constrained: self.qp.is_some(),
         };
+        let repairs = p.repairs_lengths();
         let (chol, f) = (&mut self.chol, &mut self.f_repair[..]);
         let mut repair = |p: &mut P, trial: &mut [f64], alpha: f64| {
-            repair_lengths(p, (&mut *chol, &mut *f), (search.d, slope), alpha, trial)
+            repairs && repair_lengths(p, (&mut *chol, &mut *f), (search.d, slope), alpha, trial)
         };
         let alpha = search.run(
             p,
-            &mut self.trial,
+            (&mut self.trial, &mut self.c_repaired),
             trust.map(|r| (r, &mut self.g_trial[..])),
             &mut repair,
         )?;

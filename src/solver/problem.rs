@@ -56,6 +56,11 @@ pub trait NewtonProblem {
     fn excess_force(&mut self, _trial: &[f64], _linear: (&[f64], f64), _f: &mut [f64]) -> f64 {
         0.0
     }
+    /// Whether the line search may repair its trial points with `excess_force` passes
+    /// (`solver/step.rs::repair_lengths`). Default false.
+    fn repairs_lengths(&self) -> bool {
+        false
+    }
     /// Limits a correction so that the corrected step stays admissible (contact).
     fn limit_correction(&self, _step: &[f64], _c: &mut [f64]) {}
     /// Largest admissible `alpha ≤ 1` for `step` (keeps the kinematics well defined).
