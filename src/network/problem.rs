@@ -125,6 +125,14 @@ fn subtract(grad: &mut [f64], b: &[f64]) {
 }
 
 impl NetworkProblem<'_> {
+    /// Whether predictions are projected onto edge lengths (`predict`, `keep_lengths`): not
+    /// with contact off a buckling path, where contact's own projection of the prediction (in
+    /// `extrapolate`) and the length projection undo each other (`rod_over_sphere` did not
+    /// converge in 1000 iterations).
+    fn projects_predictions(&self) -> bool {
+        !self.bias.is_empty() || self.model.contact.is_none()
+    }
+
     /// Moves the free nodes onto the edge lengths `lengths` (Gauss–Newton passes of the
     /// minimal-motion projection, to `PREDICTOR_LENGTH_ERROR`; passes that end worse than they
     /// started are undone), unless every edge is within `PREDICTION_STRAIN` of its length.
@@ -193,9 +201,7 @@ impl NewtonProblem for NetworkProblem<'_> {
         m.commit();
     }
     fn predict(&mut self, from: &State, factor: f64, lambda: f64) {
-        if self.bias.is_empty() && self.model.contact.is_some() {
-            // Contact's projection of the prediction (in `extrapolate`) and the length
-            // projection would undo each other: rod_over_sphere did not converge in 1000.
+        if !self.projects_predictions() {
             self.extrapolate(from, factor);
             self.set_continuation(lambda);
             return;
@@ -217,8 +223,7 @@ impl NewtonProblem for NetworkProblem<'_> {
         self.project_lengths(&lengths);
     }
     fn keep_lengths(&mut self, of: &State) {
-        // Not with contact, for the reason given in `predict`.
-        if self.model.contact.is_none() {
+        if self.projects_predictions() {
             let lengths = self.model.edge_lengths_of(&of.q);
             self.project_lengths(&lengths);
         }
