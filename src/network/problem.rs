@@ -171,8 +171,10 @@ impl NetworkProblem<'_> {
                 break;
             }
             m.displace(&c, 1.0);
-            m.commit();
         }
+        // Frames are transported once, over the whole projection: the passes move positions
+        // only, by far less than the turns transport handles.
+        self.model.commit();
     }
 }
 
@@ -184,13 +186,14 @@ impl NewtonProblem for NetworkProblem<'_> {
     fn restore(&mut self, s: &State) {
         self.model.state.clone_from(s);
     }
-    fn extrapolate(&mut self, from: &State, factor: f64) {
+    fn extrapolate(&mut self, from: &[(&State, f64)]) {
         // Positions only: edge angles are relative to reference frames that differ between the
-        // two iterates, and frame increments are zero after every commit.
+        // iterates, and frame increments are zero after every commit.
         let m = &mut *self.model;
         for (v, &f) in m.free.iter().enumerate() {
             if f != crate::variables::FIXED && m.layout.kind(v) == VarKind::Position {
-                m.state.q[v] += factor * (m.state.q[v] - from.q[v]);
+                let x = m.state.q[v];
+                m.state.q[v] += from.iter().map(|(s, w)| w * (s.q[v] - x)).sum::<f64>();
             }
         }
         if let Some(c) = &m.contact {
@@ -200,9 +203,9 @@ impl NewtonProblem for NetworkProblem<'_> {
         m.rollers.snap(&mut m.state.q, m.state.load_factor);
         m.commit();
     }
-    fn predict(&mut self, from: &State, factor: f64, lambda: f64) {
+    fn predict(&mut self, from: &[(&State, f64)], lambda: f64) {
         if !self.projects_predictions() {
-            self.extrapolate(from, factor);
+            self.extrapolate(from);
             self.set_continuation(lambda);
             return;
         }
@@ -211,14 +214,15 @@ impl NewtonProblem for NetworkProblem<'_> {
         // order, which the stiff stretch terms punish: the prediction is projected back onto
         // lengths extrapolated like the positions (kept by an inextensible structure, followed
         // by a stretching one).
-        let now = self.model.edge_lengths_of(&self.model.state.q);
-        let before = self.model.edge_lengths_of(&from.q);
-        let lengths: Vec<f64> = now
-            .iter()
-            .zip(&before)
-            .map(|(l, b)| l + factor * (l - b))
-            .collect();
-        self.extrapolate(from, factor);
+        let mut lengths = self.model.edge_lengths_of(&self.model.state.q);
+        let now = lengths.clone();
+        for (s, w) in from {
+            let before = self.model.edge_lengths_of(&s.q);
+            for ((l, n), b) in lengths.iter_mut().zip(&now).zip(&before) {
+                *l += w * (b - n);
+            }
+        }
+        self.extrapolate(from);
         self.set_continuation(lambda);
         self.project_lengths(&lengths);
     }

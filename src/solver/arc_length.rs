@@ -117,7 +117,7 @@ pub(super) fn follow<P: NewtonProblem>(
         last_step = Some((lp, snap.clone(), ds));
         if lam >= 1.0 {
             let f = (1.0 - lp) / (lam - lp);
-            p.extrapolate(&snap, f - 1.0);
+            p.extrapolate(&[(&snap, 1.0 - f)]);
             p.set_continuation(1.0);
             let lim = Limits {
                 tolerance: s.tolerance,

@@ -14,9 +14,12 @@ use super::settings::{ConstraintReport, NewtonReport, NewtonSettings};
 const ATTEMPT_CAP: usize = 8;
 /// Smallest continuation increment, as a fraction of the whole load path.
 const MIN_INCREMENT: f64 = 1e-5;
+/// Converged states the predictor extrapolates from, besides the current one.
+const HISTORY: usize = 2;
 /// Residual to which intermediate continuation sub-steps are converged (or the solve's tolerance
 /// if looser): their states only start the next sub-step, and a few digits are enough for that;
-/// iterating them to round-off would spend iterations on states that are discarded.
+/// iterating them to round-off would spend iterations on states that are discarded. (1e-3 let
+/// the twisted Michell ring leave its plane below its critical twist: docs/design.md.)
 pub const INTERMEDIATE_TOLERANCE: f64 = 1e-6;
 
 pub fn solve<P: NewtonProblem>(p: &mut P, s: &NewtonSettings) -> NewtonReport {
@@ -112,7 +115,7 @@ impl Path {
             finish(st, outcome, (self.steps, self.steps), its, s);
             return;
         }
-        let mut prev: Option<(f64, P::Snapshot)> = None;
+        let mut prev: Vec<(f64, P::Snapshot)> = Vec::new();
         for k in 1..=self.steps {
             let its_before = st.report.iterations;
             let reported_before = its_before - if k == 1 { self.start_iterations } else { 0 };
@@ -182,8 +185,41 @@ impl Path {
         }
     }
 
+    /// Predicts the state at `next` from the current one (`current`) and the earlier converged
+    /// states: by the secant through the last of them and, on a buckling path with two, also by
+    /// the parabola through both, keeping the prediction of lower energy. In t = √λ prescribed
+    /// motions are quadratic, and so is a post-buckled shape once it is far from its
+    /// bifurcation: the secant alone put the hemisphere footprint's interior where supports
+    /// half as far out would have it (docs/design.md).
+    fn predict<P: NewtonProblem>(
+        &self,
+        p: &mut P,
+        prev: &[(f64, P::Snapshot)],
+        next: f64,
+        current: &P::Snapshot,
+    ) {
+        let by = |p: &mut P, hist: &[(f64, P::Snapshot)]| {
+            let w = secant_weights(hist, self.lam, next);
+            let from: Vec<_> = hist.iter().zip(&w).map(|((_, s), &w)| (s, w)).collect();
+            p.predict(&from, self.load(next));
+            p.energy()
+        };
+        let linear = by(p, &prev[prev.len() - 1..]);
+        if prev.len() < 2 || !self.root_path {
+            return;
+        }
+        let first = p.snapshot();
+        p.restore(current);
+        let quadratic = by(p, prev);
+        // A margin: where the two agree to round-off (states along a line), the choice must not
+        // depend on the last bits (scaled copies of a scene follow the same path).
+        if quadratic.is_nan() || quadratic >= linear - 1e-9 * linear.abs() {
+            p.restore(&first);
+        }
+    }
+
     /// Reaches λ = k/steps through sub-steps whose increment is quartered on failure and
-    /// doubles after easy convergence; a secant predictor from the last two converged states
+    /// doubles after easy convergence; a prediction from the last converged states (`predict`)
     /// starts each sub-step. `max_iterations` bounds the Newton iterations of the whole load
     /// step, sub-steps and retries included.
     fn load_step<P: NewtonProblem>(
@@ -193,7 +229,7 @@ impl Path {
         s: &NewtonSettings,
         k: usize,
         its_before: usize,
-        prev: &mut Option<(f64, P::Snapshot)>,
+        prev: &mut Vec<(f64, P::Snapshot)>,
     ) -> Outcome {
         let target = k as f64 / self.steps as f64;
         let mut last = Outcome::Converged;
@@ -203,11 +239,8 @@ impl Path {
                 next = target;
             }
             let saved = p.snapshot();
-            match &*prev {
-                Some((lp, snap)) if self.lam > *lp => {
-                    let factor = ((next - self.lam) / (self.lam - lp)).min(2.0);
-                    p.predict(snap, factor, self.load(next));
-                }
+            match prev.last() {
+                Some((lp, _)) if self.lam > *lp => self.predict(p, prev, next, &saved),
                 Some(_) => p.set_continuation(self.load(next)),
                 None => match st.tangent_predict(p, self.load(self.lam), self.load(next)) {
                     Err(m) => return Outcome::Mechanism(m),
@@ -244,7 +277,10 @@ impl Path {
             match st.iterate(p, s, &lim, k) {
                 o @ (Outcome::Converged | Outcome::AtFloor) => {
                     st.report.substeps += 1;
-                    *prev = Some((self.lam, saved));
+                    if prev.len() == HISTORY {
+                        prev.remove(0);
+                    }
+                    prev.push((self.lam, saved));
                     self.lam = next;
                     if st.report.iterations - before <= 5 {
                         self.inc = (2.0 * self.inc).min(1.0 / self.steps as f64);
@@ -264,6 +300,25 @@ impl Path {
         }
         last
     }
+}
+
+/// Weights wᵢ of the earlier converged states (parameters sᵢ, oldest first) in the prediction
+/// x + Σ wᵢ (xᵢ − x) at `next` from the current state x at `now`: Lagrange interpolation through
+/// them all, evaluated no further than twice the last interval ahead.
+fn secant_weights<S>(prev: &[(f64, S)], now: f64, next: f64) -> Vec<f64> {
+    let last = prev.last().map_or(now, |p| p.0);
+    let at = next.min(now + 2.0 * (now - last));
+    let nodes: Vec<f64> = prev.iter().map(|p| p.0).chain([now]).collect();
+    (0..prev.len())
+        .map(|i| {
+            nodes
+                .iter()
+                .enumerate()
+                .filter(|&(j, _)| j != i)
+                .map(|(_, &sj)| (at - sj) / (nodes[i] - sj))
+                .product()
+        })
+        .collect()
 }
 
 /// Sets the report's verdict from the outcome that ended the solve.

@@ -15,13 +15,15 @@ pub trait NewtonProblem {
     type Snapshot: Clone;
     fn snapshot(&self) -> Self::Snapshot;
     fn restore(&mut self, s: &Self::Snapshot);
-    /// Moves the free unknowns to current + `factor` × (current − `from`) (secant predictor).
-    fn extrapolate(&mut self, from: &Self::Snapshot, factor: f64);
-    /// The secant predictor of a continuation sub-step: `extrapolate`, then the continuation
-    /// parameter set to `lambda`. A problem may also restore what linear extrapolation breaks
-    /// (the lengths of turning edges).
-    fn predict(&mut self, from: &Self::Snapshot, factor: f64, lambda: f64) {
-        self.extrapolate(from, factor);
+    /// Moves the free unknowns x to x + Σ wᵢ (xᵢ − x) over the snapshots xᵢ with weights wᵢ
+    /// (`from`): the secant predictor through the current iterate and one earlier snapshot, or
+    /// the quadratic one through two.
+    fn extrapolate(&mut self, from: &[(&Self::Snapshot, f64)]);
+    /// The predictor of a continuation sub-step: `extrapolate`, then the continuation parameter
+    /// set to `lambda`. A problem may also restore what extrapolation breaks (the lengths of
+    /// turning edges).
+    fn predict(&mut self, from: &[(&Self::Snapshot, f64)], lambda: f64) {
+        self.extrapolate(from);
         self.set_continuation(lambda);
     }
     /// Restores what the first (linear-response) prediction of a path breaks: the lengths of
