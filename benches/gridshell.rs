@@ -12,6 +12,7 @@ use rodnet::gridshell::job::run;
 use rodnet::network::assembly::{Assembly, HessianOut, HessianSlots};
 use rodnet::network::build::build;
 use rodnet::network::model::Model;
+use rodnet::pipeline::{settings_of, solve_scene};
 use rodnet::solver::linalg::SparseCholesky;
 use rodnet::solver::ordering::nested_dissection;
 
@@ -42,6 +43,16 @@ fn form_finding(case: &str) -> bool {
 #[divan::bench(args = ["12x4", "12x8", "24x8"], sample_count = 5, sample_size = 1)]
 fn from_analytic_net(case: &str) -> bool {
     run(&spec(case), 1.0, None).unwrap().results.converged
+}
+
+/// The flat footprint solved as a user's scene with only `buckle_toward: Some((0, 0, 1))` added
+/// (no cap path: the buckling path from flat, docs/design.md), "n x K".
+#[divan::bench(args = ["12x4", "12x8"], sample_count = 5, sample_size = 1)]
+fn footprint_buckle_toward(bencher: divan::Bencher, case: &str) {
+    let mut scene = footprint(&spec(case)).scene;
+    scene.solver.buckle_toward = Some([0.0, 0.0, 1.0]);
+    let settings = settings_of(&scene);
+    bencher.bench_local(|| solve_scene(&scene, &settings).unwrap().report.converged);
 }
 
 /// The n = 12, K = 8 model at its equilibrium, with its Hessian pattern.

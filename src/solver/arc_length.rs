@@ -125,6 +125,7 @@ pub(super) fn follow<P: NewtonProblem>(
                 extended_cap: budget.saturating_sub(st.report.iterations).max(1),
                 deadline,
                 retry_on_damping: false,
+                step_tolerance: None,
             };
             return st.iterate(p, s, &lim, s.load_steps.max(1));
         }

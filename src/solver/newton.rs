@@ -65,6 +65,9 @@ pub(super) struct Limits {
     /// Give up after four damped steps in a row (a sub-step that a smaller increment can
     /// retry more cheaply).
     pub retry_on_damping: bool,
+    /// Intermediate states only: a full, unregularized Newton step no larger than this (in the
+    /// unknowns' scales) ends the attempt after it is taken, without assembling again.
+    pub step_tolerance: Option<f64>,
 }
 
 pub(super) struct Newton {
@@ -263,8 +266,15 @@ impl Newton {
             prev_energy = last_energy;
             last_energy = e0;
             let curves = self.corrections(p, shift);
+            let mut small_step = false;
             match self.search(p, e0, shift, res, curves) {
-                Some(alpha) => damped = if alpha < 0.5 { damped + 1 } else { 0 },
+                Some(alpha) => {
+                    damped = if alpha < 0.5 { damped + 1 } else { 0 };
+                    small_step = alpha == 1.0
+                        && shift == 0.0
+                        && qp_shift.is_none()
+                        && lim.step_tolerance.is_some_and(|t| self.scaled_step() <= t);
+                }
                 None => {
                     let corrected = curves > 0;
                     let failed = (e0, shift, res, floor, corrected);
@@ -275,6 +285,9 @@ impl Newton {
             }
             it += 1;
             self.report.iterations += 1;
+            if small_step {
+                return Outcome::Converged;
+            }
             // Repeatedly damped steps far from the solution: a smaller increment is cheaper.
             if indefinite >= INDEFINITE_STEPS && lim.retry_on_damping {
                 return Outcome::Failed(format!("indefinite Newton steps (residual {res:.3e})"));
@@ -283,6 +296,15 @@ impl Newton {
                 return Outcome::Failed(format!("damped Newton steps (residual {res:.3e})"));
             }
         }
+    }
+
+    /// The largest component of the step `d` in the unknowns' scales (edge lengths, radians).
+    fn scaled_step(&self) -> f64 {
+        self.d
+            .iter()
+            .zip(&self.scales)
+            .map(|(d, s)| (d / s).abs())
+            .fold(0.0, f64::max)
     }
 
     /// Whether the attempt is converging: the quadratic model's remaining decrease from the
