@@ -249,7 +249,11 @@ impl Path {
             match prev.last() {
                 Some((lp, _)) if self.lam > *lp => self.predict(p, prev, next, &saved),
                 Some(_) => p.set_continuation(self.load(next)),
-                None => match st.tangent_predict(p, self.load(self.lam), self.load(next)) {
+                None => match st.tangent_predict(
+                    p,
+                    (self.load(self.lam), self.load(next)),
+                    self.root_path && self.inc > MIN_INCREMENT * 1.0001,
+                ) {
                     Err(m) => return Outcome::Mechanism(m),
                     // Past a bifurcation the linear response is the symmetric saddle's; where it
                     // does not even hold over the increment, Newton from the lifted prediction

@@ -104,7 +104,8 @@ impl Newton {
     /// docs/design.md).
     ///
     /// Returns whether the linear response held over the increment: taken whole (not cut by
-    /// the rotation limit of `max_step`) and lowering the energy.
+    /// the rotation limit of `max_step`) and lowering the energy. On a buckling path the
+    /// prediction is then lifted (`lift`), unless it did not hold and `cut_if_not_held`.
     ///
     /// With the Hessian at `lam` factored, this is also where zero-stiffness modes of the start
     /// are looked for: a mechanism that the loads excite is returned as Err with its
@@ -112,8 +113,8 @@ impl Newton {
     pub(super) fn tangent_predict<P: NewtonProblem>(
         &mut self,
         p: &mut P,
-        lam: f64,
-        next: f64,
+        (lam, next): (f64, f64),
+        cut_if_not_held: bool,
     ) -> Result<bool, String> {
         let n = self.g.len();
         if self.qp.is_some() {
@@ -156,10 +157,13 @@ impl Newton {
         if lowered {
             p.accept(&self.d, alpha);
         }
-        if !p.bias().is_empty() {
+        let held = lowered && alpha == 1.0;
+        // A buckling path's prediction is lifted, unless the increment is about to be cut
+        // (`cut_if_not_held`) and predicted again.
+        if !p.bias().is_empty() && (held || !cut_if_not_held) {
             self.lift(p);
         }
-        Ok(lowered && alpha == 1.0)
+        Ok(held)
     }
 
     /// The first prediction of a buckling path (`buckle_toward`): the linear response leaves a
