@@ -18,14 +18,15 @@ const MIN_INCREMENT: f64 = 1e-5;
 const HISTORY: usize = 2;
 /// Residual to which intermediate continuation sub-steps are converged (or the solve's tolerance
 /// if looser): their states only start the next sub-step, and a few digits are enough for that;
-/// iterating them to round-off would spend iterations on states that are discarded. (1e-3 let
+/// iterating them to round-off would spend iterations on states that are discarded. (1e-4 let
 /// the twisted Michell ring leave its plane below its critical twist: docs/design.md.)
 pub const INTERMEDIATE_TOLERANCE: f64 = 1e-6;
 /// An intermediate sub-step also ends once a full, unregularized Newton step is at most this
-/// large (in edge lengths and radians) and has been taken: Newton then converges quadratically,
-/// and the state is already as close as the next prediction needs. Measured on the step, not on
-/// the residual, which says little of the position along a soft mode (a residual of 1e-4 let
-/// the twisted Michell ring leave its plane below its critical twist: docs/design.md).
+/// large (in edge lengths and radians) and has been taken, if it was not the attempt's first
+/// (a step from a prediction shows nothing of Newton's contraction): Newton then converges
+/// quadratically, and the state is as close as the next prediction needs. Measured on the step,
+/// not on the residual, which says little of the position along a soft mode (a residual of 1e-4
+/// let the twisted Michell ring leave its plane below its critical twist: docs/design.md).
 const INTERMEDIATE_STEP: f64 = 1e-2;
 
 pub fn solve<P: NewtonProblem>(p: &mut P, s: &NewtonSettings) -> NewtonReport {

@@ -271,6 +271,7 @@ impl Newton {
                 Some(alpha) => {
                     damped = if alpha < 0.5 { damped + 1 } else { 0 };
                     small_step = alpha == 1.0
+                        && it > 0
                         && shift == 0.0
                         && qp_shift.is_none()
                         && lim.step_tolerance.is_some_and(|t| self.scaled_step() <= t);
