@@ -88,7 +88,8 @@ pub fn form_find(
 /// lowest node) and the sphere's unit normals there.
 fn on_cap(rho: f64, flat: &[[f64; 3]]) -> (CapNodes, CapNodes) {
     let cap = HemisphereNet::new(rho, 1);
-    let mut pos: Vec<[f64; 3]> = flat.iter().map(|x| cap.point(x[0], x[1])).collect();
+    let uv: Vec<[f64; 2]> = flat.iter().map(|x| [x[0], x[1]]).collect();
+    let mut pos = cap.points(&uv);
     let normals = pos.iter().map(|&p| normalize(p)).collect();
     let lowest = pos.iter().map(|p| p[2]).fold(f64::INFINITY, f64::min);
     for p in &mut pos {

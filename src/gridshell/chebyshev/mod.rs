@@ -547,6 +547,40 @@ impl HemisphereNet {
             .collect()
     }
 
+    /// `point(u, v)` for every (u, v) of `uv`, bit for bit, integrating each net curve once for
+    /// all the points on it instead of once per point (a cap's nodes share their rods' curves).
+    pub fn points(&self, uv: &[[f64; 2]]) -> Vec<[f64; 3]> {
+        let mut out = vec![[f64::NAN; 3]; uv.len()];
+        // Points by the curve `point` integrates along (the smaller |parameter|, by its bits),
+        // each with where on it they lie.
+        let mut curves: std::collections::BTreeMap<u64, Vec<(f64, usize)>> = Default::default();
+        for (i, &[u, v]) in uv.iter().enumerate() {
+            let (sigma, tau) = (u / self.radius, v / self.radius);
+            if marchable(sigma, tau) {
+                let (a, b) = (sigma.abs(), tau.abs());
+                curves
+                    .entry(a.min(b).to_bits())
+                    .or_default()
+                    .push((a.max(b), i));
+            }
+        }
+        for (near, mut on) in curves {
+            on.sort_by(|x, y| x.0.total_cmp(&y.0));
+            let mut curve = NetCurve::new(&self.profile, f64::from_bits(near), self.scheme);
+            for (far, i) in on {
+                let y = curve.at(far);
+                let [u, v] = uv[i];
+                let (sigma, tau) = (u / self.radius, v / self.radius);
+                let (a, b) = (sigma.abs(), tau.abs());
+                out[i] = scaled(
+                    finish(&y, a < b, a == b, sigma < 0.0, tau < 0.0),
+                    self.radius,
+                );
+            }
+        }
+        out
+    }
+
     /// Angle between the net curves at (u, v), in radians (pi/2 at the pole): the angle from
     /// `r_u` to `r_v`, positive towards the outward normal, which is `f(uv/R²)` in every
     /// quadrant. It lies in `(0, π)` up to the fold line `|uv| = 1.8616 R²`; beyond it the net

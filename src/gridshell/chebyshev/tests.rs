@@ -175,7 +175,7 @@ fn symmetries_are_exact() {
 }
 
 #[test]
-fn crossings_and_rod_points_are_the_point_function() {
+fn crossings_rod_points_and_points_are_the_point_function() {
     let net = HemisphereNet::new(1.0, 12);
     for i in 0..12 {
         for j in 0..12 {
@@ -184,6 +184,17 @@ fn crossings_and_rod_points_are_the_point_function() {
                 net.point(net.offsets[i], net.offsets[j])
             );
         }
+    }
+    let uv: Vec<[f64; 2]> = (-20..=20)
+        .flat_map(|i| (-20..=20).map(move |j| [i as f64 * 0.08, j as f64 * 0.08]))
+        .chain([[f64::NAN, 0.1], [1e12, 0.2], [0.3, 0.3]])
+        .collect();
+    for (p, &[u, v]) in net.points(&uv).iter().zip(&uv) {
+        let q = net.point(u, v);
+        assert!(
+            p == &q || (p[0].is_nan() && q[0].is_nan()),
+            "{u} {v}: {p:?} {q:?}"
+        );
     }
     let us: Vec<f64> = (-40..=40).map(|q| q as f64 * 0.04).collect();
     for k in [0, 3, 6, 11] {
