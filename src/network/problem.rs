@@ -166,14 +166,14 @@ impl NetworkProblem<'_> {
             if pass == PREDICTOR_PROJECTIONS {
                 if err > start {
                     m.state.q.copy_from_slice(&saved);
-                    m.commit();
                 }
                 break;
             }
             m.displace(&c, 1.0);
         }
-        // Frames are transported once, over the whole projection: the passes move positions
-        // only, by far less than the turns transport handles.
+        // The reference frames are transported once, from the prediction to the projected
+        // positions, not through every pass's intermediate positions: those are no states of
+        // the rods, and a prediction's frames are a choice that Newton's twist angles correct.
         self.model.commit();
     }
 }
