@@ -147,15 +147,21 @@ fn slenderness_sweep_cantilever() {
         );
         rows.push((r, tip, sol.report.iterations));
     }
+    // The baseline of the extensibility differences is r/L = 1e-4, not the slimmest rod: at
+    // r/L = 1e-5 (EA L²/EI = 4e10) the residual's round-off floor is 2e-4 and the tip is
+    // resolved only to about 3e-9 (a one-ulp change of the load moves it that much), while at
+    // 1e-4 it is the same to 13 digits under any such change. The slimmest rod still has to
+    // give the same answer over the inextensible range.
     let (_, slim, _) = rows[rows.len() - 1];
+    let (base_r, base, _) = rows[rows.len() - 2];
+    let ext0 = extensible_cantilever_tip(load_factor, base_r * base_r / 4.0);
     for &(r, tip, its) in &rows {
         let eta = r * r / 4.0;
         let ext = extensible_cantilever_tip(load_factor, eta);
-        let ext0 = extensible_cantilever_tip(load_factor, 1e-10 / 4.0);
-        let d_der = [tip[0] - slim[0], tip[1] - slim[1]];
+        let d_der = [tip[0] - base[0], tip[1] - base[1]];
         let d_ref = [ext[0] - ext0[0], ext[1] - ext0[1]];
         println!(
-            "r/L = {r:.0e}: tip − tip(1e-5) = ({:+.3e}, {:+.3e}), extensible elastica \
+            "r/L = {r:.0e}: tip − tip(1e-4) = ({:+.3e}, {:+.3e}), extensible elastica \
              ({:+.3e}, {:+.3e}), (L/r)² × Δy = {:+.4}",
             d_der[0],
             d_der[1],
@@ -163,9 +169,9 @@ fn slenderness_sweep_cantilever() {
             d_ref[1],
             d_der[1] / (r * r)
         );
-        // Extensibility: DER's change of the tip from the slimmest rod is the extensible
+        // Extensibility: DER's change of the tip from the baseline is the extensible
         // elastica's, up to the relative discretization error O(1/N²) of that change itself.
-        for k in 0..2 {
+        for k in (r > base_r).then_some(0..2).into_iter().flatten() {
             assert!(
                 (d_der[k] - d_ref[k]).abs() <= 1e-3 * d_ref[k].abs() + 1e-11,
                 "r/L = {r}: {d_der:?} vs {d_ref:?}"
@@ -173,7 +179,8 @@ fn slenderness_sweep_cantilever() {
         }
         // Inextensible range: the same answer to 1e-6 relative.
         if r <= 1e-3 {
-            let rel = d_der[0].hypot(d_der[1]) / slim[0].hypot(slim[1]);
+            let d = [tip[0] - slim[0], tip[1] - slim[1]];
+            let rel = d[0].hypot(d[1]) / slim[0].hypot(slim[1]);
             assert!(rel < 1e-6, "r/L = {r}: differs by {rel:.2e}");
         }
         // The N = 40 discretization error of the elastica (docs/validation.md: 1.8e-4).

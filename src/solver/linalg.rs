@@ -9,7 +9,7 @@ use faer::linalg::cholesky::ldlt::factor::LdltRegularization;
 use faer::linalg::cholesky::llt::factor::LltRegularization;
 use faer::sparse::linalg::cholesky::{CholeskySymbolicParams, LdltRef, LltRef};
 use faer::sparse::SparseColMatRef;
-use faer::{Conj, MatMut, Par, Side};
+use faer::{Conj, MatMut, Par};
 
 use super::symbolic::{self, Symbolic};
 
@@ -31,13 +31,20 @@ pub struct SparseCholesky {
     symbolic: Arc<Symbolic>,
     /// Values of the upper triangle, in CSC order; callers fill them through slots.
     pub values: Vec<f64>,
+    /// A + shift·W of the last factorization, in the permuted pattern faer reads.
     shifted: Vec<f64>,
+    /// shift·wᵢ of the last factorization on each diagonal entry.
+    diag_shift: Vec<f64>,
+    /// A right-hand side in the elimination order.
+    permuted_rhs: Vec<f64>,
     l: Vec<f64>,
     factor_mem: MemBuffer,
     solve_mem: MemBuffer,
     factored: bool,
-    /// LDLᵀ factor values and scratch, allocated on first use (arc-length continuation).
+    /// LDLᵀ factor values, its input in the permuted pattern, and scratch, allocated on first
+    /// use (arc-length continuation).
     ldlt: Vec<f64>,
+    ldlt_input: Vec<f64>,
     ldlt_mem: MemBuffer,
     ldlt_factored: bool,
 }
@@ -80,12 +87,15 @@ impl SparseCholesky {
             n: symbolic.pattern.ncols(),
             values: vec![0.0; nnz],
             shifted: vec![0.0; nnz],
+            diag_shift: vec![0.0; symbolic.pattern.ncols()],
+            permuted_rhs: vec![0.0; symbolic.pattern.ncols()],
             symbolic,
             l,
             factor_mem,
             solve_mem,
             factored: false,
             ldlt: Vec::new(),
+            ldlt_input: Vec::new(),
             ldlt_mem: MemBuffer::new(faer::dyn_stack::StackReq::EMPTY),
             ldlt_factored: false,
         }
@@ -110,10 +120,17 @@ impl SparseCholesky {
         self.symbolic.pattern.row_idx()
     }
 
-    /// Values of A + shift·I from the last call to [`Self::factor`] (successful or not), in the
-    /// order of [`Self::row_idx`].
-    pub fn shifted_values(&self) -> &[f64] {
-        &self.shifted
+    /// Values of A + shift·W from the last call to [`Self::factor_weighted`] (successful or
+    /// not), in the order of [`Self::row_idx`], written to `out`.
+    pub fn shifted_values_into(&self, out: &mut Vec<f64>) {
+        out.clear();
+        out.extend(
+            self.symbolic
+                .permuted
+                .of_upper
+                .iter()
+                .map(|&p| self.shifted[p]),
+        );
     }
 
     /// Largest absolute diagonal value.
@@ -132,11 +149,14 @@ impl SparseCholesky {
 
     /// The shift of the last factorization on each diagonal entry (shift·wᵢ; zeros unshifted).
     pub fn shift_diagonal(&self) -> Vec<f64> {
-        self.symbolic
-            .diag
-            .iter()
-            .map(|&p| self.shifted[p] - self.values[p])
-            .collect()
+        self.diag_shift.clone()
+    }
+
+    /// The values of the upper triangle copied into the permuted pattern's order.
+    fn permute_values(&self, out: &mut [f64]) {
+        for (&v, &p) in self.values.iter().zip(&self.symbolic.permuted.of_upper) {
+            out[p] = v;
+        }
     }
 
     /// Numeric LLᵀ factorization of A + shift·I.
@@ -150,15 +170,19 @@ impl SparseCholesky {
         shift: f64,
         weights: &[f64],
     ) -> Result<(), NotPositiveDefinite> {
-        self.shifted.copy_from_slice(&self.values);
-        for (i, &p) in self.symbolic.diag.iter().enumerate() {
-            self.shifted[p] += shift * weights.get(i).copied().unwrap_or(1.0);
+        let mut shifted = std::mem::take(&mut self.shifted);
+        self.permute_values(&mut shifted);
+        self.shifted = shifted;
+        let pm = &self.symbolic.permuted;
+        for (i, &p) in pm.diag.iter().enumerate() {
+            self.diag_shift[i] = shift * weights.get(i).copied().unwrap_or(1.0);
+            self.shifted[p] += self.diag_shift[i];
         }
-        let a = SparseColMatRef::new(self.symbolic.pattern.as_ref(), &self.shifted);
+        let a = SparseColMatRef::new(pm.pattern.as_ref(), &self.shifted);
         let r = self.symbolic.cholesky.factorize_numeric_llt(
             &mut self.l,
             a,
-            Side::Upper,
+            pm.side,
             LltRegularization::default(),
             Par::Seq,
             MemStack::new(&mut self.factor_mem),
@@ -177,17 +201,22 @@ impl SparseCholesky {
     pub fn factor_ldlt(&mut self) -> Result<(), NotPositiveDefinite> {
         if self.ldlt.is_empty() {
             self.ldlt = vec![0.0; self.symbolic.cholesky.len_val()];
+            self.ldlt_input = vec![0.0; self.values.len()];
             self.ldlt_mem = MemBuffer::new(
                 self.symbolic
                     .cholesky
                     .factorize_numeric_ldlt_scratch::<f64>(Par::Seq, Default::default()),
             );
         }
-        let a = SparseColMatRef::new(self.symbolic.pattern.as_ref(), &self.values);
+        let mut input = std::mem::take(&mut self.ldlt_input);
+        self.permute_values(&mut input);
+        self.ldlt_input = input;
+        let pm = &self.symbolic.permuted;
+        let a = SparseColMatRef::new(pm.pattern.as_ref(), &self.ldlt_input);
         let r = self.symbolic.cholesky.factorize_numeric_ldlt(
             &mut self.ldlt,
             a,
-            Side::Upper,
+            pm.side,
             LdltRegularization::default(),
             Par::Seq,
             MemStack::new(&mut self.ldlt_mem),
@@ -205,16 +234,38 @@ impl SparseCholesky {
     pub fn solve_ldlt(&mut self, rhs: &mut [f64]) {
         assert!(self.ldlt_factored, "solve without an LDLᵀ factorization");
         let f = LdltRef::<usize, f64>::new(&self.symbolic.cholesky, &self.ldlt);
-        let m = MatMut::from_column_major_slice_mut(rhs, self.n, 1);
+        let order = &self.symbolic.permuted.elimination;
+        let b = &mut self.permuted_rhs;
+        order
+            .iter()
+            .zip(b.iter_mut())
+            .for_each(|(&i, b)| *b = rhs[i]);
+        let m = MatMut::from_column_major_slice_mut(b, self.n, 1);
         f.solve_in_place_with_conj(Conj::No, m, Par::Seq, MemStack::new(&mut self.solve_mem));
+        order.iter().zip(b.iter()).for_each(|(&i, b)| rhs[i] = *b);
     }
 
     /// Solves (A + shift·I) x = rhs in place with the last successful factorization.
     pub fn solve(&mut self, rhs: &mut [f64]) {
         assert!(self.factored, "solve without a factorization");
         let llt = LltRef::<usize, f64>::new(&self.symbolic.cholesky, &self.l);
-        let m = MatMut::from_column_major_slice_mut(rhs, self.n, 1);
+        let order = &self.symbolic.permuted.elimination;
+        let b = &mut self.permuted_rhs;
+        order
+            .iter()
+            .zip(b.iter_mut())
+            .for_each(|(&i, b)| *b = rhs[i]);
+        let m = MatMut::from_column_major_slice_mut(b, self.n, 1);
         llt.solve_in_place_with_conj(Conj::No, m, Par::Seq, MemStack::new(&mut self.solve_mem));
+        order.iter().zip(b.iter()).for_each(|(&i, b)| rhs[i] = *b);
+    }
+
+    /// y = (A + shift·W) x with the matrix of the last factorization.
+    pub fn multiply_shifted(&self, x: &[f64], y: &mut [f64]) {
+        self.multiply(x, y);
+        for ((y, x), s) in y.iter_mut().zip(x).zip(&self.diag_shift) {
+            *y += s * x;
+        }
     }
 
     /// y = A x with the unshifted symmetric matrix (upper triangle stored).

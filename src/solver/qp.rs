@@ -69,17 +69,7 @@ const POLISH_ROUNDS: usize = 6;
 
 /// y = (A + τI) x with the matrix of `chol`'s last factorization.
 fn shifted_multiply(chol: &SparseCholesky, x: &[f64], y: &mut [f64]) {
-    let (cp, ri, pv) = (chol.col_ptr(), chol.row_idx(), chol.shifted_values());
-    y.iter_mut().for_each(|v| *v = 0.0);
-    for c in 0..x.len() {
-        for k in cp[c]..cp[c + 1] {
-            let r = ri[k];
-            y[r] += pv[k] * x[c];
-            if r != c {
-                y[c] += pv[k] * x[r];
-            }
-        }
-    }
+    chol.multiply_shifted(x, y);
 }
 
 /// In-place Cholesky factor (lower triangle, row-major, a × a) of a symmetric positive
@@ -212,8 +202,7 @@ impl StepQp {
         // than Clarabel's equilibration bounds (1e±4) can even out; in the Jacobi-scaled
         // unknowns y = S⁻¹d every diagonal of P is 1. The multipliers are unchanged by it.
         let (cp, ri) = (chol.col_ptr(), chol.row_idx());
-        self.p_val.clear();
-        self.p_val.extend_from_slice(chol.shifted_values());
+        chol.shifted_values_into(&mut self.p_val);
         for c in 0..self.n {
             let diag = self.p_val[cp[c + 1] - 1];
             self.scale[c] = if diag > 0.0 { diag.sqrt().recip() } else { 1.0 };

@@ -22,12 +22,30 @@ pub struct Symbolic {
     pub(super) pattern: SymbolicSparseColMat<usize>,
     /// Position of each diagonal entry in the pattern.
     pub(super) diag: Vec<usize>,
+    /// The same matrix as the numeric factorization reads it (see [`Permuted`]).
+    pub(super) permuted: Permuted,
+    /// The analysis of the permuted matrix, in the identity order.
     pub(super) cholesky: SymbolicCholesky<usize>,
     /// The ordering chosen.
     pub ordering: Ordering,
     /// The ordering compared with it and not kept, if any (its structure is dropped).
     pub other: Option<Compared>,
     key: Key,
+}
+
+/// The pattern renumbered to the elimination order and stored on the side faer's numeric
+/// factorization works in (upper for simplicial, lower for supernodal factors): each
+/// factorization then copies the values through `of_upper` instead of letting faer permute and
+/// transpose them into a fresh matrix every time.
+pub(super) struct Permuted {
+    pub(super) pattern: SymbolicSparseColMat<usize>,
+    pub(super) side: Side,
+    /// For each entry of the upper-triangle pattern, its position in `pattern`.
+    pub(super) of_upper: Vec<usize>,
+    /// Position of unknown i's diagonal entry in `pattern`.
+    pub(super) diag: Vec<usize>,
+    /// `elimination[k]`: the unknown eliminated k-th (row k of the permuted matrix).
+    pub(super) elimination: Vec<usize>,
 }
 
 /// What the memory estimate needs of the ordering not kept.
@@ -185,7 +203,8 @@ pub fn with_order(
         ordering: Ordering::Amd,
     };
     let (pattern, diag) = upper_pattern(n, pairs);
-    let cholesky = symbolic_factor(&pattern, elimination)?;
+    let chosen = symbolic_factor(&pattern, elimination)?;
+    let (permuted, cholesky) = permute(&pattern, &diag, &chosen)?;
     let ordering = match elimination {
         Some(_) => Ordering::NestedDissection,
         None => Ordering::Amd,
@@ -193,6 +212,7 @@ pub fn with_order(
     Some(Symbolic {
         pattern,
         diag,
+        permuted,
         cholesky,
         ordering,
         other: None,
@@ -208,12 +228,15 @@ fn analyse_uncached(
     key: Key,
 ) -> Option<Symbolic> {
     let (pattern, diag) = upper_pattern(n, pairs);
-    let (cholesky, chosen, other) = choose(&pattern, ordering, positions, |order| {
+    let (analysis, chosen, other) = choose(&pattern, ordering, positions, |order| {
         symbolic_factor(&pattern, order)
     })?;
+    let (permuted, cholesky) = permute(&pattern, &diag, &analysis)?;
+    drop(analysis);
     Some(Symbolic {
         pattern,
         diag,
+        permuted,
         cholesky,
         ordering: chosen,
         other: other.map(|o| Compared {
@@ -243,6 +266,107 @@ pub(super) fn symbolic_factor(
         None => SymmetricOrdering::Amd,
     };
     factorize_symbolic_cholesky(pattern.as_ref(), Side::Upper, ordering, symbolic_params()).ok()
+}
+
+/// The upper-triangle `pattern` renumbered by `analysis`'s elimination order, on the side its
+/// kind of factor reads, and the analysis of that matrix in the identity order (the same
+/// elimination tree and factor).
+fn permute(
+    pattern: &SymbolicSparseColMat<usize>,
+    diag: &[usize],
+    analysis: &SymbolicCholesky<usize>,
+) -> Option<(Permuted, SymbolicCholesky<usize>)> {
+    let n = pattern.ncols();
+    let elimination: Vec<usize> = match analysis.perm() {
+        Some(p) => p.arrays().0.to_vec(),
+        None => (0..n).collect(),
+    };
+    let mut rank = vec![0usize; n];
+    for (k, &i) in elimination.iter().enumerate() {
+        rank[i] = k;
+    }
+    // faer analyses a matrix in the identity order from its upper triangle whatever side it is
+    // told; the supernodal factorization then reads the lower one.
+    let (upper, of_upper) = renumbered(pattern, &rank, Side::Upper);
+    let cholesky = factorize_symbolic_cholesky(
+        upper.as_ref(),
+        Side::Upper,
+        SymmetricOrdering::Identity,
+        symbolic_params(),
+    )
+    .ok()?;
+    let (permuted, of_upper, side) = match cholesky.raw() {
+        SymbolicCholeskyRaw::Simplicial(_) => (upper, of_upper, Side::Upper),
+        SymbolicCholeskyRaw::Supernodal(_) => {
+            drop((upper, of_upper));
+            let (lower, of_upper) = renumbered(pattern, &rank, Side::Lower);
+            (lower, of_upper, Side::Lower)
+        }
+    };
+    let diag = diag.iter().map(|&p| of_upper[p]).collect();
+    Some((
+        Permuted {
+            pattern: permuted,
+            side,
+            of_upper,
+            diag,
+            elimination,
+        },
+        cholesky,
+    ))
+}
+
+/// The upper-triangle `pattern` with unknown i renumbered `rank[i]`, stored as the triangle
+/// `side` (rows sorted within each column), and each entry's position in it.
+fn renumbered(
+    pattern: &SymbolicSparseColMat<usize>,
+    rank: &[usize],
+    side: Side,
+) -> (SymbolicSparseColMat<usize>, Vec<usize>) {
+    let n = pattern.ncols();
+    let (cp, ri) = (pattern.col_ptr(), pattern.row_idx());
+    let nnz = ri.len();
+    let mut at = Vec::with_capacity(nnz);
+    let mut start = vec![0usize; n + 1];
+    for c in 0..n {
+        for &r in &ri[cp[c]..cp[c + 1]] {
+            let (a, b) = (rank[r], rank[c]);
+            let (lo, hi) = (a.min(b), a.max(b));
+            let (row, col) = if side == Side::Upper {
+                (lo, hi)
+            } else {
+                (hi, lo)
+            };
+            at.push((row, col));
+            start[col + 1] += 1;
+        }
+    }
+    for c in 0..n {
+        start[c + 1] += start[c];
+    }
+    let mut order = vec![0usize; nnz];
+    let mut fill = start.clone();
+    for (k, &(_, col)) in at.iter().enumerate() {
+        order[fill[col]] = k;
+        fill[col] += 1;
+    }
+    drop(fill);
+    for c in 0..n {
+        order[start[c]..start[c + 1]].sort_unstable_by_key(|&k| at[k].0);
+    }
+    let mut of_upper = vec![0usize; nnz];
+    let rows: Vec<usize> = order
+        .iter()
+        .enumerate()
+        .map(|(p, &k)| {
+            of_upper[k] = p;
+            at[k].0
+        })
+        .collect();
+    (
+        SymbolicSparseColMat::new_checked(n, n, start, None, rows),
+        of_upper,
+    )
 }
 
 /// The stored upper triangle of `pairs` (distinct, rows sorted within each column) and the

@@ -22,6 +22,7 @@
 //! does; the angles keep their meaning).
 
 use crate::energy::Term;
+use crate::math::dual::D1;
 use crate::math::vec::{add, cross, dot, norm, normalize, scalef, sub, transport};
 use crate::network::Network;
 use crate::rod::frames::edge_frame_of;
@@ -67,6 +68,11 @@ impl Cut {
     }
 }
 
+/// A term's gradient at the state `st` (first derivatives only: the Hessian is not needed).
+fn gradient<const N: usize, E: Term<N>>(t: &E, st: &State) -> [f64; N] {
+    t.eval(st, &D1::<N>::vars(&t.gather(&st.q))).g
+}
+
 fn slice3(g: &[f64], i: usize) -> [f64; 3] {
     [g[i], g[i + 1], g[i + 2]]
 }
@@ -90,7 +96,7 @@ fn cuts(net: &Network) -> Vec<Cut> {
     let st = with_current_references(net);
     let mut cuts = vec![Cut::default(); m.edge_nodes.len()];
     for s in &m.terms.stretch {
-        let g = s.derivatives(&st, &s.gather(&st.q)).g;
+        let g = gradient(s, &st);
         // ∂E/∂x_b = ∂E/∂e; a stretch term turns nothing.
         let f = slice3(&g, 3);
         cuts[s.edge].force = add(cuts[s.edge].force, f);
@@ -115,12 +121,7 @@ fn cuts(net: &Network) -> Vec<Cut> {
     };
     for s in &m.terms.bend_twist {
         let b = &s.bend;
-        stencil(
-            &b.vars,
-            b.edges,
-            b.signs,
-            s.derivatives(&st, &s.gather(&st.q)).g,
-        );
+        stencil(&b.vars, b.edges, b.signs, gradient(s, &st));
     }
     // Half-stencils (x_vertex, x_other, θ, ω, α): sign +1 when the rod edge leaves the vertex.
     let mut half = |vars: &[usize; 11], edge: usize, sign: f64, g: [f64; 11]| {
@@ -130,12 +131,7 @@ fn cuts(net: &Network) -> Vec<Cut> {
     };
     for f in &m.terms.frame_bend_twist {
         let b = &f.bend;
-        half(
-            &b.vars,
-            b.edge,
-            b.sign,
-            f.derivatives(&st, &f.gather(&st.q)).g,
-        );
+        half(&b.vars, b.edge, b.sign, gradient(f, &st));
     }
     cuts
 }
