@@ -234,30 +234,38 @@ impl SparseCholesky {
     pub fn solve_ldlt(&mut self, rhs: &mut [f64]) {
         assert!(self.ldlt_factored, "solve without an LDLᵀ factorization");
         let f = LdltRef::<usize, f64>::new(&self.symbolic.cholesky, &self.ldlt);
-        let order = &self.symbolic.permuted.elimination;
-        let b = &mut self.permuted_rhs;
-        order
-            .iter()
-            .zip(b.iter_mut())
-            .for_each(|(&i, b)| *b = rhs[i]);
-        let m = MatMut::from_column_major_slice_mut(b, self.n, 1);
-        f.solve_in_place_with_conj(Conj::No, m, Par::Seq, MemStack::new(&mut self.solve_mem));
-        order.iter().zip(b.iter()).for_each(|(&i, b)| rhs[i] = *b);
+        in_elimination_order(
+            &self.symbolic.permuted.elimination,
+            &mut self.permuted_rhs,
+            rhs,
+            |b| {
+                f.solve_in_place_with_conj(
+                    Conj::No,
+                    b,
+                    Par::Seq,
+                    MemStack::new(&mut self.solve_mem),
+                )
+            },
+        );
     }
 
     /// Solves (A + shift·I) x = rhs in place with the last successful factorization.
     pub fn solve(&mut self, rhs: &mut [f64]) {
         assert!(self.factored, "solve without a factorization");
         let llt = LltRef::<usize, f64>::new(&self.symbolic.cholesky, &self.l);
-        let order = &self.symbolic.permuted.elimination;
-        let b = &mut self.permuted_rhs;
-        order
-            .iter()
-            .zip(b.iter_mut())
-            .for_each(|(&i, b)| *b = rhs[i]);
-        let m = MatMut::from_column_major_slice_mut(b, self.n, 1);
-        llt.solve_in_place_with_conj(Conj::No, m, Par::Seq, MemStack::new(&mut self.solve_mem));
-        order.iter().zip(b.iter()).for_each(|(&i, b)| rhs[i] = *b);
+        in_elimination_order(
+            &self.symbolic.permuted.elimination,
+            &mut self.permuted_rhs,
+            rhs,
+            |b| {
+                llt.solve_in_place_with_conj(
+                    Conj::No,
+                    b,
+                    Par::Seq,
+                    MemStack::new(&mut self.solve_mem),
+                )
+            },
+        );
     }
 
     /// y = (A + shift·W) x with the matrix of the last factorization.
@@ -289,6 +297,23 @@ impl SparseCholesky {
             }
         }
     }
+}
+
+/// Runs `solve` on `rhs` renumbered into the elimination order (in the buffer `b`) and writes
+/// the solution back in the unknowns' order.
+fn in_elimination_order(
+    order: &[usize],
+    b: &mut [f64],
+    rhs: &mut [f64],
+    solve: impl FnOnce(MatMut<'_, f64>),
+) {
+    order
+        .iter()
+        .zip(b.iter_mut())
+        .for_each(|(&i, b)| *b = rhs[i]);
+    let n = b.len();
+    solve(MatMut::from_column_major_slice_mut(b, n, 1));
+    order.iter().zip(b.iter()).for_each(|(&i, b)| rhs[i] = *b);
 }
 
 #[cfg(test)]
