@@ -52,9 +52,12 @@ fn allocations_per_iteration(name: &str) -> (Vec<usize>, usize, usize) {
     });
     // Inside a pool's worker, the assembly's parallel loops use the worker's own queue; from
     // outside, each would be injected into the pool's shared queue, which allocates a block
-    // every 63 jobs.
+    // every 63 jobs. One worker: with two, a worker's job queue grows and shrinks its buffer
+    // when the other is slow to steal (a loaded machine), which allocates twice in whatever
+    // iteration it happens (1 of 6 runs with both cores busy, and a CI run beside builds).
+    // rodnet's own code is the same at any thread count.
     let pool = rayon::ThreadPoolBuilder::new()
-        .num_threads(2)
+        .num_threads(1)
         .build()
         .unwrap();
     let s = pool.install(|| solve_scene(&scene, &settings).unwrap());
