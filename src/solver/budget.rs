@@ -70,8 +70,11 @@ pub fn factor_cost(
     };
     let nnz = symbolic.hessian_nnz();
     // The pattern arrays of the solve: the pairs' slots and their bucketing, row indices,
-    // values and shifted values, column pointers and diagonal positions.
-    let pattern_bytes = 8 * (2 * pairs.len() + 3 * nnz + 3 * n) as u64;
+    // values and shifted values, column pointers and diagonal positions; the pattern renumbered
+    // to the elimination order (its row indices and each entry's position in it, column
+    // pointers, diagonal positions, the order), and the solve's renumbered right-hand side and
+    // diagonal shifts.
+    let pattern_bytes = 8 * (2 * pairs.len() + 5 * nnz + 8 * n) as u64;
     let chosen = analysis(symbolic.cholesky());
     let other = symbolic.other;
     // The other ordering's structure is alive while the two are compared.
