@@ -15,7 +15,7 @@ if [ ! -x "$venv/bin/python" ]; then
 fi
 
 export CARGO_TARGET_DIR="${CARGO_TARGET_DIR:-$root/target}"
-if [ ! -x "$CARGO_TARGET_DIR/release/rodnet" ]; then
+if [ -z "${RODNET:-}" ] && [ ! -x "$CARGO_TARGET_DIR/release/rodnet" ]; then
     (cd "$root" && cargo build --release)
 fi
 
