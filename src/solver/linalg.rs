@@ -152,13 +152,6 @@ impl SparseCholesky {
         self.diag_shift.clone()
     }
 
-    /// The values of the upper triangle copied into the permuted pattern's order.
-    fn permute_values(&self, out: &mut [f64]) {
-        for (&v, &p) in self.values.iter().zip(&self.symbolic.permuted.of_upper) {
-            out[p] = v;
-        }
-    }
-
     /// Numeric LLᵀ factorization of A + shift·I.
     pub fn factor(&mut self, shift: f64) -> Result<(), NotPositiveDefinite> {
         self.factor_weighted(shift, &[])
@@ -170,10 +163,8 @@ impl SparseCholesky {
         shift: f64,
         weights: &[f64],
     ) -> Result<(), NotPositiveDefinite> {
-        let mut shifted = std::mem::take(&mut self.shifted);
-        self.permute_values(&mut shifted);
-        self.shifted = shifted;
         let pm = &self.symbolic.permuted;
+        permute_values(&self.values, &pm.of_upper, &mut self.shifted);
         for (i, &p) in pm.diag.iter().enumerate() {
             self.diag_shift[i] = shift * weights.get(i).copied().unwrap_or(1.0);
             self.shifted[p] += self.diag_shift[i];
@@ -208,10 +199,8 @@ impl SparseCholesky {
                     .factorize_numeric_ldlt_scratch::<f64>(Par::Seq, Default::default()),
             );
         }
-        let mut input = std::mem::take(&mut self.ldlt_input);
-        self.permute_values(&mut input);
-        self.ldlt_input = input;
         let pm = &self.symbolic.permuted;
+        permute_values(&self.values, &pm.of_upper, &mut self.ldlt_input);
         let a = SparseColMatRef::new(pm.pattern.as_ref(), &self.ldlt_input);
         let r = self.symbolic.cholesky.factorize_numeric_ldlt(
             &mut self.ldlt,
@@ -296,6 +285,13 @@ impl SparseCholesky {
                 }
             }
         }
+    }
+}
+
+/// The values of the upper triangle copied into the permuted pattern's order (`of_upper`).
+fn permute_values(values: &[f64], of_upper: &[usize], out: &mut [f64]) {
+    for (&v, &p) in values.iter().zip(of_upper) {
+        out[p] = v;
     }
 }
 

@@ -67,11 +67,6 @@ const POLISH_MAX_ENTRIES: usize = 10_000_000;
 /// Active-set corrections tried before the interior-point solution is kept.
 const POLISH_ROUNDS: usize = 6;
 
-/// y = (A + τI) x with the matrix of `chol`'s last factorization.
-fn shifted_multiply(chol: &SparseCholesky, x: &[f64], y: &mut [f64]) {
-    chol.multiply_shifted(x, y);
-}
-
 /// In-place Cholesky factor (lower triangle, row-major, a × a) of a symmetric positive
 /// definite matrix given by its lower triangle; false if it is not numerically positive
 /// definite.
@@ -404,7 +399,7 @@ impl StepQp {
         let mut rd = vec![0.0; n];
         let mut last = f64::INFINITY;
         for _ in 0..4 {
-            shifted_multiply(chol, &dp, &mut rd);
+            chol.multiply_shifted(&dp, &mut rd);
             for k in 0..n {
                 rd[k] += g[k];
             }
