@@ -65,6 +65,7 @@ fn grid_scene(n: usize, subdivide: usize) -> Scene {
                 subdivide,
                 closed: false,
                 normal: None,
+                end_correction: true,
             });
         }
     }
@@ -161,6 +162,7 @@ fn cantilever_solve(bencher: divan::Bencher, n: usize) {
             subdivide: n,
             closed: false,
             normal: None,
+            end_correction: true,
         }],
         joints: vec![],
         supports: vec![Support {

@@ -84,9 +84,14 @@ fn the_elastica_reference_is_converged() {
     );
 }
 
-/// The extrapolate removes the h² error: it is at least 10× closer to the elastica than the
-/// finer solve and shrinks faster than h² under refinement; the error estimate of the finer
-/// solve is its actual error to 15 %; at 12 edges the extrapolate is within 1e-4·L.
+/// The extrapolate removes the h² error: it is at least 4× closer to the elastica than the
+/// finer solve and shrinks faster than h² under refinement; at 12 edges it is within 1e-4·L.
+/// The error estimate of the finer solve is its actual error up to the next term, O(h): within
+/// 1.5/n relative. Measured (8, 12, 16 edges): extrapolate 5.0, 7.5, 10× closer; estimate
+/// 15.3, 10.7, 8.0 % under (1.22–1.28/n). With the plain Voronoi weights the finer solve was
+/// 2.5× less accurate and the extrapolate 1.1–1.2× (it was 11.6× closer than the finer solve,
+/// the estimate 8.6–4.9 % under): the end correction removed most of the h² term that the
+/// extrapolate removes, and what it leaves at these n is the h³ term.
 #[test]
 fn extrapolated_cantilever_converges_faster_than_h_squared() {
     let reference = elastica_tip(2000);
@@ -102,12 +107,12 @@ fn extrapolated_cantilever_converges_faster_than_h_squared() {
         let extrapolated_error = distance(*x.rods[0].points.last().unwrap(), reference);
         assert_eq!(x.rods[0].points.len(), n + 1);
         assert!(
-            (x.error_estimate / fine_error - 1.0).abs() < 0.15,
+            (x.error_estimate / fine_error - 1.0).abs() < 1.5 / n as f64,
             "{n}: estimate {:.3e}, actual {fine_error:.3e}",
             x.error_estimate
         );
         assert!(
-            extrapolated_error < 0.1 * fine_error,
+            extrapolated_error < 0.25 * fine_error,
             "{n}: extrapolate {extrapolated_error:.3e}, finer solve {fine_error:.3e}"
         );
         // The finer solve starts from the coarse equilibrium: a few Newton iterations.

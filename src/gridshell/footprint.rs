@@ -306,6 +306,7 @@ fn rod(name: String, points: Vec<[f64; 3]>, normal: [f64; 3]) -> Rod {
         subdivide: 1,
         closed: false,
         normal: Some(normal),
+        end_correction: true,
     }
 }
 

@@ -48,6 +48,7 @@ pub fn rod(name: &str, points: Vec<[f64; 3]>, subdivide: usize) -> Rod {
         subdivide,
         closed: false,
         normal: None,
+        end_correction: true,
     }
 }
 

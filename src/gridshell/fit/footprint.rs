@@ -261,6 +261,7 @@ pub fn footprint(
             subdivide: 1,
             closed: false,
             normal: Some(in_plane),
+            end_correction: true,
         });
         names.insert(ri, name);
         rod_of.push(ri);

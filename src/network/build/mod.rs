@@ -5,10 +5,11 @@
 //!
 //! [`geometry`] (rest shape) → [`frames`] (joints, kinks, clamps, torques: vertex frames and
 //! node merges) → [`nodes`] (global nodes and edges) → [`supports`] (fixed and prescribed
-//! variables) → [`terms`] (stretch, bend and twist stencils, ports, joint springs) → [`loads`]
+//! variables) → [`end_weights`] (the bending quadrature's end correction) → [`terms`] (stretch, bend and twist stencils, ports, joint springs) → [`loads`]
 //! (point loads, gravity, torques, and the force scale); [`gauge`] holds a node of an
 //! unsupported structure.
 
+mod end_weights;
 mod frames;
 mod gauge;
 mod geometry;
@@ -53,7 +54,8 @@ pub fn build(scene: &Scene) -> Result<Network, FieldError> {
         twist_prev: Vec::new(),
         load_factor: 0.0,
     };
-    let mut terms = terms::elastic(&net, &joined, &layout, &mut state, &mut fixed);
+    let weights = end_weights::end_weights(&rest, &net, &joined);
+    let mut terms = terms::elastic(&net, &joined, &layout, &mut state, &mut fixed, &weights);
     let driven = !supported.prescribed.is_empty()
         || !supported.rotations.is_empty()
         || supported.springs.iter().any(|s| s.anchor[0] != s.anchor[1])

@@ -2,6 +2,7 @@
 //! vertices and across straight splices, half-stencils between rod edges and vertex frames, and
 //! the springs of elastic joints. Rest curvature and twist are measured on the rest state.
 
+use super::end_weights::EndWeights;
 use super::frames::Joined;
 use super::nodes::Numbered;
 use crate::energy::registry::Terms;
@@ -21,6 +22,7 @@ pub fn elastic(
     layout: &DofLayout,
     state: &mut State,
     fixed: &mut [bool],
+    weights: &EndWeights,
 ) -> Terms {
     let mut terms = Terms::default();
     for (e, &[a, b]) in net.edge_nodes.iter().enumerate() {
@@ -33,10 +35,10 @@ pub fn elastic(
             ea: net.rods[net.edge_rod[e]].stiffness.ea,
         });
     }
-    rod_stencils(net, joined, layout, &mut terms, state);
+    rod_stencils(net, joined, layout, &mut terms, state, weights);
     splice_stencils(net, joined, layout, &mut terms, state);
     twist_gauge(net, joined, layout, &terms, fixed);
-    port_stencils(net, joined, layout, &mut terms, state);
+    port_stencils(net, joined, layout, &mut terms, state, weights);
     joint_springs(net, joined, layout, &mut terms);
     terms
 }
@@ -48,6 +50,8 @@ struct Stencil {
     signs: [f64; 2],
     lengths: [f64; 2],
     stiffness: [Stiffness; 2],
+    /// The bending quadrature's weight over the Voronoi length (the end correction).
+    bend_weight: f64,
 }
 
 /// Local variables of a vertex stencil: (x_prev, x_vertex, x_next, θ_in, θ_out).
@@ -79,7 +83,7 @@ impl Stencil {
             edges: self.edges,
             signs: self.signs,
             rest: [[0.0; 2]; 2],
-            voronoi,
+            voronoi: voronoi * self.bend_weight,
             ei: [[k0.ei1, k0.ei2], [k1.ei1, k1.ei2]],
         };
         let y = Twist::reduced(&bend.gather(&state.q));
@@ -110,6 +114,7 @@ fn rod_stencils(
     layout: &DofLayout,
     terms: &mut Terms,
     state: &mut State,
+    weights: &EndWeights,
 ) {
     for (ri, rod) in net.rods.iter().enumerate() {
         let (np, k) = (rod.nodes.len(), rod.stiffness);
@@ -130,6 +135,7 @@ fn rod_stencils(
                 signs: [1.0, 1.0],
                 lengths: [net.rest_lengths[ei], net.rest_lengths[eo]],
                 stiffness: [k, k],
+                bend_weight: weights.vertex(ri, j),
             };
             stencil.push(terms, state);
         }
@@ -167,6 +173,7 @@ fn splice_stencils(
             signs: [sa, sb],
             lengths: [net.rest_lengths[ea], net.rest_lengths[eb]],
             stiffness: [rod_a.stiffness, rod_b.stiffness],
+            bend_weight: 1.0,
         };
         stencil.push(terms, state);
     }
@@ -212,9 +219,11 @@ fn port_stencils(
     layout: &DofLayout,
     terms: &mut Terms,
     state: &mut State,
+    weights: &EndWeights,
 ) {
-    for p in &joined.table.ports {
+    for (pi, p) in joined.table.ports.iter().enumerate() {
         let rod = &net.rods[p.rod];
+        let weight = weights.port(pi);
         let (np, k, j) = (rod.nodes.len(), rod.stiffness, p.node);
         let mut incident = Vec::new();
         if rod.closed || j > 0 {
@@ -246,7 +255,7 @@ fn port_stencils(
                 edge: e,
                 sign,
                 rest: [[0.0; 2]; 2],
-                voronoi,
+                voronoi: voronoi * weight,
                 ei: [k.ei1, k.ei2],
             };
             let y = FrameTwist::reduced(&bend.gather(&state.q));

@@ -47,8 +47,10 @@ fn stencil_strain(section: &Section, k: [[f64; 2]; 2], rest: [[f64; 2]; 2], voro
     (0.5 * (e(0).powi(2) + e(1).powi(2))).sqrt()
 }
 
-/// Bending strain at every node of every rod, indexed like `net.rods`.
-fn strains(net: &Network) -> Vec<Vec<f64>> {
+/// Bending strain at every node of every rod, and the factor on its Voronoi length that its
+/// bending stencil weighs (1 but next to an end-corrected rod end, `build/end_weights.rs`),
+/// indexed like `net.rods`.
+fn strains(net: &Network) -> (Vec<Vec<f64>>, Vec<Vec<f64>>) {
     let m = &net.model;
     let st = &m.state;
     // Rod and position along it of each global edge.
@@ -59,6 +61,14 @@ fn strains(net: &Network) -> Vec<Vec<f64>> {
         }
     }
     let mut out: Vec<Vec<f64>> = net.rods.iter().map(|r| vec![0.0; r.nodes.len()]).collect();
+    let mut weights: Vec<Vec<f64>> = net.rods.iter().map(|r| vec![1.0; r.nodes.len()]).collect();
+    for b in m.terms.bend_twist.iter().map(|s| &s.bend) {
+        let (r, k) = at_edge[b.edges[1]];
+        let voronoi = 0.5 * (m.rest_lengths[b.edges[0]] + m.rest_lengths[b.edges[1]]);
+        if let Some(w) = weights.get_mut(r).and_then(|n| n.get_mut(k)) {
+            *w = b.voronoi / voronoi;
+        }
+    }
     let mut put = |r: usize, j: usize, v: f64| {
         if let Some(x) = out.get_mut(r).and_then(|n| n.get_mut(j)) {
             *x = x.max(v);
@@ -95,25 +105,30 @@ fn strains(net: &Network) -> Vec<Vec<f64>> {
             stencil_strain(&info.section, k_now, f.rest, f.voronoi),
         );
     }
-    out
+    (out, weights)
 }
 
 /// Bending at every node of every rod, indexed like `net.rods` (one pass over the terms).
 pub fn all_vertex_bending(net: &Network) -> Vec<Vec<VertexBending>> {
-    let s = strains(net);
+    let (s, w) = strains(net);
     net.rods
         .iter()
-        .zip(&s)
-        .map(|(rod, st)| bending_with(net, rod, Some(st)))
+        .zip(s.iter().zip(&w))
+        .map(|(rod, (st, w))| bending_with(net, rod, st, w))
         .collect()
 }
 
-fn bending_with(net: &Network, rod: &RodInfo, strain: Option<&[f64]>) -> Vec<VertexBending> {
+fn bending_with(
+    net: &Network,
+    rod: &RodInfo,
+    strain: &[f64],
+    weight: &[f64],
+) -> Vec<VertexBending> {
     let pos = |n: usize| net.model.position(n);
     let np = rod.nodes.len();
     (0..np)
         .map(|j| {
-            let eps = strain.and_then(|s| s.get(j)).copied().unwrap_or(0.0);
+            let eps = strain.get(j).copied().unwrap_or(0.0);
             let has_prev = rod.closed || j > 0;
             let has_next = rod.closed || j + 1 < np;
             let kappa = if has_prev && has_next {
@@ -125,7 +140,8 @@ fn bending_with(net: &Network, rod: &RodInfo, strain: Option<&[f64]>) -> Vec<Ver
                 // atan2 keeps small angles accurate; acos of the cosine lost them to
                 // round-off as ε/φ² (1e-7 relative at φ = 5e-5).
                 let phi = norm(cross(e0, e1)).atan2(dot(e0, e1));
-                2.0 * (0.5 * phi).sin() / (0.5 * (l0 + l1))
+                let w = weight.get(j).copied().unwrap_or(1.0);
+                2.0 * (0.5 * phi).sin() / (0.5 * (l0 + l1) * w)
             } else {
                 0.0
             };

@@ -62,6 +62,7 @@ pub fn to_scene(obj: &ObjFile, o: &NetworkOptions) -> Result<Generated, ObjError
             subdivide: o.subdivide,
             closed: c.closed,
             normal: None,
+            end_correction: true,
         })
         .collect();
     let rod_lines = g.chains.iter().map(|c| c.line).collect();
