@@ -155,8 +155,8 @@ fn split_cantilever_matches_single_rod() {
 
 /// Two rods clamped at both ends cross off-centre; a vertical load acts at the crossing. The
 /// rigid joint couples rod 1's slope to rod 2's twist, the ball joint does not. Sweeping an
-/// elastic joint from 1e-6 to 1e6 × EI/h, the answers approach Ball and Rigid monotonically,
-/// within O(k) and O(1/k), and the stiff end converges like the rest.
+/// elastic joint from 1e-6 to 1e6 × EI/h, the answers approach Rigid and two clamped beams in
+/// parallel (Ball's limit) monotonically, and the stiff end converges like the rest.
 #[test]
 fn elastic_joint_sweep_reaches_ball_and_rigid() {
     let n = 8;
@@ -189,12 +189,20 @@ fn elastic_joint_sweep_reaches_ball_and_rigid() {
             );
         }
         if e == -6 {
-            // The ball joint keeps each rod's own stencil through the vertex while the elastic
-            // joint uses two half-stencils: equal up to discretization error, O(h²).
+            // Both approach two clamped–clamped beams in parallel under the load, w =
+            // P/(k₁ + k₂) with kᵢ = 3EI Lᵢ³/(aᵢ³bᵢ³). The ball joint keeps each rod's own
+            // stencil through the vertex (plain weights at the kink of the moment: 1.46 % off),
+            // the elastic joint's two half-stencils carry the end correction on each side
+            // (0.34 % off; without it, the ball joint's answer to 4e-7).
+            let k = |l: f64, a: f64, b: f64| 3.0 * l.powi(3) / (a * b).powi(3);
+            let exact = -1e-3 / (k(2.0, 0.5, 1.5) + k(1.5, 1.0, 0.5));
+            let (ev, eb) = ((v - exact) / exact, (ball - exact) / exact);
+            println!("soft limit {ev:.2e}, ball {eb:.2e} from two beams in parallel");
             assert!(
-                (v - ball).abs() < 2e-3 * ball.abs(),
-                "soft limit {v} vs ball {ball}"
+                ev.abs() < 5e-3 && eb.abs() < 2e-2,
+                "soft {ev:.2e}, ball {eb:.2e}"
             );
+            assert!(ev.abs() < 0.5 * eb.abs(), "soft {ev:.2e}, ball {eb:.2e}");
         }
     }
 }

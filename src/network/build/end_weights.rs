@@ -1,19 +1,22 @@
 //! End-corrected bending weights (Gregory's correction of the trapezoidal rule).
 //!
-//! The bending energy is a trapezoidal rule over the rod's vertices: a rod that ends at a vertex
-//! frame (a clamp, a joint, a rotational spring or a torque) has a half-stencil of weight h/2
-//! there, and Euler–Maclaurin leaves an O(h²) term at that end, the leading part of DER's error
-//! constant on clamped and jointed rods (docs/performance.md, "Where DER's error constant comes
-//! from"). Gregory's one-sided correction moves h/12 of the end half-stencil's weight to the next
-//! vertex: 5h/12 and (h₀ + h₁)/2 + h/12. A stencil's weight is both the length over which its
-//! turning angle is a curvature and its quadrature weight, so the bending energy φ²/(2w) takes
-//! it in the denominator. The weights' sum is kept, so a constant curvature stays exact; only
-//! bending is corrected (a uniform twist stays exact with the plain weights).
+//! The bending energy is a trapezoidal rule over the rod's vertices. A vertex frame (a clamp, a
+//! joint's port, a rotational spring, a torque) splits the rod's stencil there into
+//! half-stencils of weight h/2, and the moment is not smooth across it (it ends, or has a kink
+//! or a jump): Euler–Maclaurin leaves an O(h²) term at each such side, the leading part of DER's
+//! error constant on clamped and jointed rods (docs/performance.md, "Where DER's error constant
+//! comes from"). Gregory's one-sided correction moves h/12 of each such half-stencil's weight to
+//! the neighbouring vertex: 5h/12 and (h₀ + h₁)/2 + h/12. A stencil's weight is both the length
+//! over which its turning angle is a curvature and its quadrature weight, so the bending energy
+//! φ²/(2w) takes it in the denominator. The weights' sum is kept, so a constant curvature's
+//! energy stays exact; only bending is corrected (a uniform twist stays exact with the plain
+//! weights).
 //!
-//! Not corrected: free and pinned ends (no half-stencil: the moment and its virtual work vanish
-//! there), rods with `end_correction: false`, ends whose next vertex is itself at a vertex frame,
-//! rods of one edge, and two clamped ends that meet smoothly at their targets (a rod closed into
-//! a ring by its clamps, Michell's ring): there the plain weights are already the periodic rule.
+//! Not corrected: free and pinned ends and vertices without a frame (ball joints, point loads:
+//! no half-stencil), rods with `end_correction: false`, sides whose neighbour is itself at a
+//! vertex frame or a rod end, closed rods, and two clamped ends that meet smoothly at their
+//! targets (a rod closed into a ring by its clamps, Michell's ring): there the plain weights are
+//! already the periodic rule.
 
 use std::collections::HashMap;
 
@@ -26,15 +29,15 @@ use crate::scene::types::SupportKind;
 /// The bending weights over the Voronoi lengths, where the correction changes them.
 #[derive(Debug, Default)]
 pub struct EndWeights {
-    /// By port index: its half-stencil's factor (5/6 where corrected).
-    port: HashMap<usize, f64>,
+    /// By (port index, edge): that half-stencil's factor (5/6 where corrected).
+    port: HashMap<(usize, usize), f64>,
     /// By (rod, rod node): that inner vertex's factor.
     vertex: HashMap<(usize, usize), f64>,
 }
 
 impl EndWeights {
-    pub fn port(&self, p: usize) -> f64 {
-        self.port.get(&p).copied().unwrap_or(1.0)
+    pub fn port(&self, p: usize, edge: usize) -> f64 {
+        self.port.get(&(p, edge)).copied().unwrap_or(1.0)
     }
 
     pub fn vertex(&self, rod: usize, node: usize) -> f64 {
@@ -53,18 +56,21 @@ pub fn end_weights(rest: &Rest, net: &Numbered, joined: &Joined) -> EndWeights {
         {
             continue;
         }
-        let (end_edge, next_edge, next) = match j {
-            0 => (rod.edges[0], rod.edges[1], 1),
-            _ if j + 1 == np => (rod.edges[np - 2], rod.edges[np - 3], np - 2),
-            _ => continue,
-        };
-        if joined.table.port_of.contains_key(&(r, next)) {
-            continue;
+        // Each side of the frame whose neighbour is a regular inner vertex: the stencil there
+        // weighs (h + h₁)/2, h the edge between them and h₁ the edge beyond.
+        let before = (j > 0).then(|| (rod.edges[j - 1], j - 1, j.checked_sub(2)));
+        let after = (j + 1 < np).then(|| (rod.edges[j], j + 1, Some(j + 1)));
+        for (e, nb, beyond) in before.into_iter().chain(after) {
+            let Some(e2) = beyond.and_then(|k| rod.edges.get(k).copied()) else {
+                continue;
+            };
+            if nb == 0 || nb + 1 == np || joined.table.port_of.contains_key(&(r, nb)) {
+                continue;
+            }
+            let (h, h1) = (net.rest_lengths[e], net.rest_lengths[e2]);
+            out.port.insert((pi, e), 5.0 / 6.0);
+            *out.vertex.entry((r, nb)).or_insert(1.0) += h / 12.0 / (0.5 * (h + h1));
         }
-        let (h, h1) = (net.rest_lengths[end_edge], net.rest_lengths[next_edge]);
-        out.port.insert(pi, 5.0 / 6.0);
-        let voronoi = 0.5 * (h + h1);
-        *out.vertex.entry((r, next)).or_insert(1.0) += h / 12.0 / voronoi;
     }
     out
 }

@@ -223,7 +223,6 @@ fn port_stencils(
 ) {
     for (pi, p) in joined.table.ports.iter().enumerate() {
         let rod = &net.rods[p.rod];
-        let weight = weights.port(pi);
         let (np, k, j) = (rod.nodes.len(), rod.stiffness, p.node);
         let mut incident = Vec::new();
         if rod.closed || j > 0 {
@@ -255,7 +254,7 @@ fn port_stencils(
                 edge: e,
                 sign,
                 rest: [[0.0; 2]; 2],
-                voronoi: voronoi * weight,
+                voronoi: voronoi * weights.port(pi, e),
                 ei: [k.ei1, k.ei2],
             };
             let y = FrameTwist::reduced(&bend.gather(&state.q));
