@@ -108,12 +108,24 @@ fn smooth_junctions(rest: &Rest) -> Vec<(usize, usize)> {
         })
         .collect();
     let tol = 1e-9 * rest.length_scale.max(f64::MIN_POSITIVE);
+    // Ends within `tol` of each other fall in the same or neighbouring cells of size `tol`: a
+    // scene with many clamps is not compared pair by pair.
+    let cell = |p: [f64; 3]| p.map(|x| (x / tol).floor() as i64);
+    let mut grid: HashMap<[i64; 3], Vec<usize>> = HashMap::new();
+    for (k, e) in ends.iter().enumerate() {
+        grid.entry(cell(e.at)).or_default().push(k);
+    }
     let mut out = Vec::new();
     for (k, a) in ends.iter().enumerate() {
-        for b in &ends[k + 1..] {
-            let continuous = dist(&a.outward, &b.outward.map(|x| -x)) <= 1e-8;
-            if a.site != b.site && dist(&a.at, &b.at) <= tol && continuous {
-                out.extend([a.site, b.site]);
+        let c = cell(a.at);
+        for d in 0..27 {
+            let key = [c[0] + d % 3 - 1, c[1] + (d / 3) % 3 - 1, c[2] + d / 9 - 1];
+            for &m in grid.get(&key).into_iter().flatten().filter(|&&m| m > k) {
+                let b = &ends[m];
+                let continuous = dist(&a.outward, &b.outward.map(|x| -x)) <= 1e-8;
+                if a.site != b.site && dist(&a.at, &b.at) <= tol && continuous {
+                    out.extend([a.site, b.site]);
+                }
             }
         }
     }
