@@ -122,8 +122,8 @@ pub struct Rod {
     /// First material axis at the first edge (projected onto the plane normal to it).
     #[serde(default)]
     pub normal: Option<[f64; 3]>,
-    /// (extension) Gregory's end correction of the bending weights where the rod ends at a
-    /// clamp or joint (`network/build/end_weights.rs`); `false` keeps the plain Voronoi weights.
+    /// (extension) Gregory's end correction of the bending weights beside clamps and joints
+    /// (`network/build/end_weights.rs`); `false` keeps the plain Voronoi weights.
     #[serde(default = "yes", skip_serializing_if = "is_yes")]
     pub end_correction: bool,
 }

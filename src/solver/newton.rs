@@ -321,11 +321,10 @@ impl Newton {
     /// shift carries at most a tenth of the step's curvature dᵀ(H + τW)d = −gᵀd; beyond, the
     /// Hessian is indefinite along the step and the model says nothing of the distance left,
     /// unless even the shifted model's decrease is below `ENERGY_CONVERGED` of the recent ones:
-    /// then the energy has converged and what is left is in the residual. That is the r/L = 1e-5
-    /// cantilever at its floor, whose Hessian near equilibrium fails to factor by round-off
-    /// (shift share 0.57–0.69 with the model at 1e-4–2e-3 of the recent decreases): retried from
-    /// a quarter of the load, it took 24–26 iterations instead of 12–15, by the last bit of the
-    /// load.
+    /// then the energy has converged and what is left is in the residual. A very slender rod
+    /// near its round-off floor can fail to factor there by round-off alone, and retrying it
+    /// from a smaller load discarded an attempt as good as converged (docs/performance.md,
+    /// "Remedy, landed").
     fn converging(&self, e0: f64, (last_energy, its): (f64, f64), shift: f64) -> bool {
         let slope: f64 = self.g.iter().zip(&self.d).map(|(a, b)| a * b).sum();
         let decrease = (last_energy - e0) / its;

@@ -5,8 +5,9 @@
 //!
 //! [`geometry`] (rest shape) → [`frames`] (joints, kinks, clamps, torques: vertex frames and
 //! node merges) → [`nodes`] (global nodes and edges) → [`supports`] (fixed and prescribed
-//! variables) → [`end_weights`] (the bending quadrature's end correction) → [`terms`] (stretch, bend and twist stencils, ports, joint springs) → [`loads`]
-//! (point loads, gravity, torques, and the force scale); [`gauge`] holds a node of an
+//! variables) → [`end_weights`] (the bending quadrature's end correction beside vertex frames)
+//! → [`terms`] (stretch, bend and twist stencils, ports, joint springs) → [`loads`] (point
+//! loads, gravity, torques, and the force scale); [`gauge`] holds a node of an
 //! unsupported structure.
 
 mod end_weights;

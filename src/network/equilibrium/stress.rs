@@ -1,7 +1,7 @@
 //! Bending strain and stress at rod vertices. The strain comes from the change of the material
 //! curvatures (κ1, κ2) from the rest shape, so a rod drawn curved is unstressed at rest; the
-//! curvature density is the integrated curvature over the rest Voronoi length, as in the bending
-//! energy. Vertices at a clamp or joint take their curvature from the half-stencils between the
+//! curvature density is the integrated curvature over the stencil's weight (the rest Voronoi
+//! length, end-corrected beside vertex frames), as in the bending energy. Vertices at a clamp or joint take their curvature from the half-stencils between the
 //! vertex frame and each incident edge (the largest side), so clamped ends are not reported as
 //! unstressed; only free ends are.
 
@@ -48,7 +48,7 @@ fn stencil_strain(section: &Section, k: [[f64; 2]; 2], rest: [[f64; 2]; 2], voro
 }
 
 /// Bending strain at every node of every rod, and the factor on its Voronoi length that its
-/// bending stencil weighs (1 but next to an end-corrected rod end, `build/end_weights.rs`),
+/// bending stencil weighs (1 but beside a vertex frame, `build/end_weights.rs`),
 /// indexed like `net.rods`.
 fn strains(net: &Network) -> (Vec<Vec<f64>>, Vec<Vec<f64>>) {
     let m = &net.model;
