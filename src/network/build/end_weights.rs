@@ -18,7 +18,7 @@
 //! targets (a rod closed into a ring by its clamps, Michell's ring): there the plain weights are
 //! already the periodic rule.
 
-use std::collections::HashMap;
+use std::collections::{HashMap, HashSet};
 
 use super::frames::Joined;
 use super::geometry::Rest;
@@ -52,8 +52,7 @@ pub fn end_weights(rest: &Rest, net: &Numbered, joined: &Joined) -> EndWeights {
         let (r, j) = (p.rod, p.node);
         let rod = &net.rods[r];
         let np = rod.nodes.len();
-        if !rest.scene.rods[r].end_correction || rod.closed || np < 3 || junctions.contains(&(r, j))
-        {
+        if !rest.scene.rods[r].end_correction || rod.closed || junctions.contains(&(r, j)) {
             continue;
         }
         // Each side of the frame whose neighbour is a regular inner vertex: the stencil there
@@ -84,7 +83,7 @@ struct ClampedEnd {
 
 /// Clamped rod ends whose targets meet another clamped end's in position with a continuous
 /// tangent (the one end's outward tangent opposite the other's).
-fn smooth_junctions(rest: &Rest) -> Vec<(usize, usize)> {
+fn smooth_junctions(rest: &Rest) -> HashSet<(usize, usize)> {
     let ends: Vec<ClampedEnd> = rest
         .scene
         .supports
@@ -115,7 +114,7 @@ fn smooth_junctions(rest: &Rest) -> Vec<(usize, usize)> {
     for (k, e) in ends.iter().enumerate() {
         grid.entry(cell(e.at)).or_default().push(k);
     }
-    let mut out = Vec::new();
+    let mut out = HashSet::new();
     for (k, a) in ends.iter().enumerate() {
         let c = cell(a.at);
         for d in 0..27 {
