@@ -10,6 +10,7 @@ mod common;
 
 use std::collections::BTreeMap;
 
+use rodnet::energy::Term;
 use rodnet::network::assembly::{Assembly, HessianOut, HessianSlots};
 use rodnet::network::build::build;
 use rodnet::network::model::Model;
@@ -33,6 +34,10 @@ fn material(r: f64) -> Material {
 }
 
 fn grid_scene(n: usize, subdivide: usize) -> Scene {
+    grid_scene_with(n, subdivide, JointKind::Ball)
+}
+
+fn grid_scene_with(n: usize, subdivide: usize, kind: JointKind) -> Scene {
     let mut materials = BTreeMap::new();
     materials.insert("m".to_string(), material(0.01));
     let mut rods = Vec::new();
@@ -74,7 +79,7 @@ fn grid_scene(n: usize, subdivide: usize) -> Scene {
             joints.push(Joint {
                 name: format!("j{i}_{j}"),
                 at: vec![(format!("x{j}"), i + 1), (format!("y{i}"), j + 1)],
-                kind: JointKind::Ball,
+                kind: kind.clone(),
                 normal: None,
             });
         }
@@ -118,6 +123,37 @@ fn grid_assembly(bencher: divan::Bencher) {
                 slots: &hs,
             }),
         })
+    });
+}
+
+/// The fused kernels alone (derivatives of every stencil of one kind, no scatter, one thread):
+/// `BendTwist` on the grid's rod interiors, `FrameBendTwist` on the same grid with rigid joints.
+#[divan::bench]
+fn kernel_bend_twist(bencher: divan::Bencher) {
+    let m = build(&grid_scene(20, 4)).unwrap().model;
+    let st = &m.state;
+    bencher.bench_local(|| {
+        let mut s = 0.0;
+        for t in &m.terms.bend_twist {
+            s += t.derivatives(st, &t.gather(&st.q)).h[0][10];
+        }
+        s
+    });
+}
+
+#[divan::bench]
+fn kernel_frame_bend_twist(bencher: divan::Bencher) {
+    let m = build(&grid_scene_with(20, 4, JointKind::Rigid))
+        .unwrap()
+        .model;
+    let st = &m.state;
+    assert!(!m.terms.frame_bend_twist.is_empty());
+    bencher.bench_local(|| {
+        let mut s = 0.0;
+        for t in &m.terms.frame_bend_twist {
+            s += t.derivatives(st, &t.gather(&st.q)).h[0][10];
+        }
+        s
     });
 }
 

@@ -9,6 +9,7 @@
 //! [`Category::Bend`] and twisting under [`Category::Twist`].
 
 use super::bend::{Bend, STENCIL_MAP};
+use super::bend_twist_outer::{add_linear_square, add_rotated_bend};
 use super::twist::Twist;
 use super::{Category, Term};
 use crate::math::dual::{compose, separable_dot};
@@ -68,10 +69,26 @@ impl Term<11> for BendTwist {
         let dots = FrameDots::<HD<6>>::new(&frame(0), &frame(1), separable_dot::<3, 3, 6>);
         let p = dots.binormal_projections();
         let r = self.twist.reference_twist_of(st, &dots);
-        let o = HD::<7>::vars(&[p[0].v, p[1].v, p[2].v, p[3].v, r.v, y[6], y[7]]);
-        let theta = [o[5], o[6]];
-        let energy = self.bend.energy_of(&[o[0], o[1], o[2], o[3]], theta)
-            + self.twist.energy_of(o[4], theta);
+        // The energy in (projections, reference twist, θ⁰, θ¹), derivatives by hand.
+        let o = [p[0].v, p[1].v, p[2].v, p[3].v, r.v, y[6], y[7]];
+        let (b, t) = (&self.bend, &self.twist);
+        let mut energy = HD::<7>::cst(0.0);
+        for j in 0..2 {
+            let idx = [2 * j, 2 * j + 1, 5 + j];
+            let at = idx.map(|i| o[i]);
+            add_rotated_bend(
+                &mut energy,
+                idx,
+                at,
+                b.signs[j],
+                b.rest[j],
+                b.ei[j],
+                0.25 / b.voronoi,
+            );
+        }
+        let coef = [1.0, -t.signs[0], t.signs[1]];
+        let w = 0.5 * t.gj / t.voronoi;
+        add_linear_square(&mut energy, [4, 5, 6], [o[4], o[5], o[6]], coef, t.rest, w);
         let inner = [p[0], p[1], p[2], p[3], r];
         super::expand(&STENCIL_MAP, &compose::<6, 5, 7, 8>(&inner, &energy))
     }

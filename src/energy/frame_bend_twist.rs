@@ -10,6 +10,7 @@
 //! still reported apart, bending under [`Category::Bend`] and twisting under
 //! [`Category::Twist`].
 
+use super::bend_twist_outer::{add_fixed_bend, add_linear_square, add_rotated_bend};
 use super::frame_bend::FrameBend;
 use super::frame_twist::FrameTwist;
 use super::{diff3, same, Category, Term};
@@ -120,8 +121,16 @@ impl Term<11> for FrameBendTwist {
         let along = HD::<3>::vars(&[y[4], y[5], y[6]]);
         let (p, r) = self.intermediates(st, w_alpha, along, separable_dot::<4, 3, 7>);
         let inner = [p[0], p[1], p[2], p[3], r];
-        let o = HD::<6>::vars(&[p[0].v, p[1].v, p[2].v, p[3].v, r.v, y[7]]);
-        let [bend, twist] = self.energies_of(([o[0], o[1], o[2], o[3]], o[4]), o[5]);
-        super::expand(&MAP, &compose::<7, 5, 6, 8>(&inner, &(bend + twist)))
+        // The energy in (projections, reference twist, θ), derivatives by hand.
+        let o = [p[0].v, p[1].v, p[2].v, p[3].v, r.v, y[7]];
+        let (b, t) = (&self.bend, &self.twist);
+        let w = 0.25 / b.voronoi;
+        let mut energy = HD::<6>::cst(0.0);
+        add_fixed_bend(&mut energy, [0, 1], [o[0], o[1]], b.rest[0], b.ei, w);
+        let edge = [o[2], o[3], o[5]];
+        add_rotated_bend(&mut energy, [2, 3, 5], edge, b.sign, b.rest[1], b.ei, w);
+        let w = 0.5 * t.gj / t.voronoi;
+        add_linear_square(&mut energy, [4, 5], [o[4], o[5]], [1.0, b.sign], t.rest, w);
+        super::expand(&MAP, &compose::<7, 5, 6, 8>(&inner, &energy))
     }
 }

@@ -4,6 +4,7 @@
 
 pub mod bend;
 pub mod bend_twist;
+pub mod bend_twist_outer;
 pub mod frame_bend;
 pub mod frame_bend_twist;
 pub mod frame_twist;

@@ -233,20 +233,21 @@ impl<const N: usize> Real for HD<N> {
         // With y = self: ∇θ = N/r², N = x∇y − y∇x, and
         // ∇²θ = (x∇²y − y∇²x)/r² − (N⊗w + w⊗N)/r⁴ with w = x∇x + y∇y.
         let y = self;
-        let r2 = x.v * x.v + y.v * y.v;
+        // Products with 1/r² and 1/r⁴, not divisions: the compiler may not rewrite them.
+        let inv2 = 1.0 / (x.v * x.v + y.v * y.v);
+        let inv4 = inv2 * inv2;
+        let (xs, ys) = (x.v * inv2, y.v * inv2);
         let mut r = Self::cst(y.v.atan2(x.v));
         let mut n = [0.0; N];
         let mut w = [0.0; N];
         for i in 0..N {
             n[i] = x.v * y.g[i] - y.v * x.g[i];
-            w[i] = x.v * x.g[i] + y.v * y.g[i];
-            r.g[i] = n[i] / r2;
+            w[i] = (x.v * x.g[i] + y.v * y.g[i]) * inv4;
+            r.g[i] = n[i] * inv2;
         }
-        let r4 = r2 * r2;
         for i in 0..N {
             for j in i..N {
-                r.h[i][j] =
-                    (x.v * y.h[i][j] - y.v * x.h[i][j]) / r2 - (n[i] * w[j] + w[i] * n[j]) / r4;
+                r.h[i][j] = xs * y.h[i][j] - ys * x.h[i][j] - (n[i] * w[j] + w[i] * n[j]);
             }
         }
         r
