@@ -78,20 +78,25 @@ fn refined_cantilever(bencher: divan::Bencher, n: usize) {
 }
 
 /// The issue-12 target: the PL²/EI = 5 cantilever to a tip error of 1e-4·L against the
-/// extensible elastica (tests/extrapolate.rs): 50 edges solved directly (error 9.6e-5), or 12
-/// and 24 edges with `--extrapolate` (5.3e-5).
-#[divan::bench(args = ["direct_50", "extrapolated_12"], sample_count = 20)]
+/// extensible elastica (tests/extrapolate.rs): 50 edges solved directly (error 9.6e-5), 12
+/// and 24 edges with `--extrapolate` (5.3e-5), or 4, 8 and 16 with `--levels 3` (5.5e-5).
+#[divan::bench(args = ["direct_50", "extrapolated_12", "three_levels_4"], sample_count = 20)]
 fn cantilever_to_1e4(bencher: divan::Bencher, how: &str) {
     let mut s = load("cantilever");
     s.solver = Default::default();
     if let rodnet::scene::types::Load::Force { force, .. } = &mut s.loads[0] {
         force[1] *= 2.5;
     }
-    let extrapolated = how.starts_with("extrapolated");
-    s.rods[0].subdivide = if extrapolated { 12 } else { 50 };
+    let (subdivide, levels) = match how {
+        "extrapolated_12" => (12, 2),
+        "three_levels_4" => (4, 3),
+        _ => (50, 1),
+    };
+    s.rods[0].subdivide = subdivide;
     bencher.bench(|| {
-        let sol = if extrapolated {
-            rodnet::study::extrapolate::solve(&s, &settings_of(&s)).expect("valid scene")
+        let sol = if levels > 1 {
+            rodnet::study::extrapolate::solve_levels(&s, &settings_of(&s), levels)
+                .expect("valid scene")
         } else {
             solve_scene(&s, &settings_of(&s)).expect("valid scene")
         };

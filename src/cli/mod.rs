@@ -88,6 +88,11 @@ pub enum Command {
         /// the other outputs are the finer solve's).
         #[arg(long, conflicts_with = "initial")]
         extrapolate: bool,
+        /// With --extrapolate: 3 also solves at four times the subdivision and removes the h²
+        /// and h³ terms of the error together, measuring its order (2: the h² term only).
+        #[arg(long, value_name = "2|3", requires = "extrapolate", default_value_t = 2,
+              value_parser = clap::value_parser!(u8).range(2..=3))]
+        levels: u8,
         /// No progress output.
         #[arg(long)]
         quiet: bool,
@@ -149,6 +154,7 @@ pub fn run(cli: Cli) -> i32 {
             modes_obj,
             initial,
             extrapolate,
+            levels,
             quiet,
             network,
             limits,
@@ -165,7 +171,7 @@ pub fn run(cli: Cli) -> i32 {
                     modes: modes.map(|k| k as usize),
                     modes_obj,
                     initial,
-                    extrapolate,
+                    extrapolate: extrapolate.then_some(levels as usize),
                 },
                 quiet,
                 &network,

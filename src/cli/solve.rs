@@ -23,9 +23,9 @@ pub(super) struct Outputs {
     /// `--initial`: an earlier results JSON of the same scene to start from (an input, checked
     /// with the outputs so that no output replaces it).
     pub initial: Option<PathBuf>,
-    /// `--extrapolate`: the scene and its doubled subdivision, extrapolated
-    /// (`study::extrapolate`).
-    pub extrapolate: bool,
+    /// `--extrapolate [--levels L]`: the scene and its doubled (and quadrupled) subdivision,
+    /// extrapolated from L levels (`study::extrapolate`).
+    pub extrapolate: Option<usize>,
 }
 
 impl Outputs {
@@ -207,8 +207,9 @@ fn solve_and_write(label: &str, sc: &Scene, source: &Source, outputs: Outputs, q
     settings.progress = Some(tracker.hook());
     let mut stage_error = None;
     let result = match &outputs.initial {
-        None if outputs.extrapolate => {
-            crate::study::extrapolate::solve(sc, &settings).map_err(|e| match e {
+        None if outputs.extrapolate.is_some() => {
+            let levels = outputs.extrapolate.unwrap_or(2);
+            crate::study::extrapolate::solve_levels(sc, &settings, levels).map_err(|e| match e {
                 job::JobError::Scene(e) => source.describe(&e),
                 job::JobError::Refused(m) => format!("--extrapolate: {m}"),
             })
@@ -315,17 +316,7 @@ fn solve_and_write(label: &str, sc: &Scene, source: &Source, outputs: Outputs, q
         }
     );
     if let Some(x) = &r.extrapolation {
-        println!(
-            "{label}: extrapolated from subdivisions ×1 and ×2 (order {}): the finer solve's \
-             error estimated at {:.3e} m ({:.3e} of the structure's size); {} + {} iterations, \
-             {:.3} s in all",
-            x.order,
-            x.error_estimate,
-            x.relative_error_estimate,
-            x.coarse_iterations,
-            x.fine_iterations,
-            x.seconds
-        );
+        print_extrapolation(label, x);
     }
     if r.converged {
         if let Some(m) = &sol.report.message {
@@ -351,4 +342,31 @@ fn read_initial(f: &Path) -> Result<Vec<crate::network::initial::RodState>, Stri
     let text = scene::read_text(f, "initial results", super::plot::MAX_JSON_BYTES)
         .map_err(|e| e.to_string())?;
     crate::io::initial::parse(&text).map_err(|e| format!("--initial {}: {e}", f.display()))
+}
+
+fn print_extrapolation(label: &str, x: &crate::io::results::ExtrapolationJson) {
+    let iterations = match x.middle_iterations {
+        Some(m) => format!("{} + {m} + {}", x.coarse_iterations, x.fine_iterations),
+        None => format!("{} + {}", x.coarse_iterations, x.fine_iterations),
+    };
+    let (levels, order) = if x.levels == 3 {
+        let observed = x
+            .observed_order
+            .map_or("not measurable".to_string(), |p| format!("{p:.2}"));
+        (
+            "×1, ×2 and ×4",
+            format!("orders 2 and 3 removed, observed order {observed}"),
+        )
+    } else {
+        ("×1 and ×2", format!("order {}", x.order))
+    };
+    println!(
+        "{label}: extrapolated from subdivisions {levels} ({order}): the finest solve's error \
+         estimated at {:.3e} m ({:.3e} of the structure's size); {iterations} iterations, \
+         {:.3} s in all",
+        x.error_estimate, x.relative_error_estimate, x.seconds
+    );
+    if let Some(e) = x.extrapolate_error_estimate {
+        println!("{label}: the extrapolate's own error is at most about {e:.3e} m");
+    }
 }

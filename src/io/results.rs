@@ -38,18 +38,19 @@ impl From<EnergyParts> for EnergyJson {
     }
 }
 
-/// The Richardson extrapolate of two solves, the scene's subdivision and twice it
-/// (`study::extrapolate`).
+/// The Richardson extrapolate of two solves, the scene's subdivision and twice it, or of three
+/// with four times it too (`study::extrapolate`).
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 pub struct ExtrapolationJson {
-    /// The order of the error removed (DER: 2).
+    /// The highest order of the error removed: 2 with two levels, 3 with three (the h² and h³
+    /// terms).
     pub order: f64,
-    /// Each rod's (coarse, fine) subdivision, in scene order.
+    /// Each rod's (coarse, finest) subdivision, in scene order.
     pub subdivide: Vec<[usize; 2]>,
     /// Each rod's extrapolated nodes at the coarse subdivision, m.
     pub rods: Vec<ExtrapolatedRod>,
-    /// Largest distance between the fine solution and the extrapolate, m: the estimated error of
-    /// the fine solution (the extrapolate's own error is of higher order).
+    /// Largest distance between the finest solution and the extrapolate, m: the estimated error
+    /// of the finest solution (the extrapolate's own error is of higher order).
     pub error_estimate: f64,
     /// `error_estimate` over the diagonal of the deformed structure's bounding box.
     pub relative_error_estimate: f64,
@@ -57,8 +58,25 @@ pub struct ExtrapolationJson {
     pub energy: f64,
     pub coarse_iterations: usize,
     pub fine_iterations: usize,
-    /// Both solves, s.
+    /// All solves, s.
     pub seconds: f64,
+    /// Solves extrapolated from: 2 (subdivision ×1, ×2) or 3 (×1, ×2, ×4; `--levels 3`).
+    #[serde(default = "two_levels")]
+    pub levels: usize,
+    /// Three levels: Newton iterations of the ×2 solve.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub middle_iterations: Option<usize>,
+    /// Three levels: log₂ of the ratio of the largest node changes ×1 → ×2 and ×2 → ×4.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub observed_order: Option<f64>,
+    /// Three levels: largest distance between the extrapolate and the two-level extrapolate of
+    /// the finer pair, m (an upper estimate of the extrapolate's own error).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub extrapolate_error_estimate: Option<f64>,
+}
+
+fn two_levels() -> usize {
+    2
 }
 
 /// One rod of an [`ExtrapolationJson`].
