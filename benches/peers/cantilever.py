@@ -22,6 +22,7 @@ RHO = 1000.0  # PyElastica only (statics does not depend on it)
 REF = reference.elastica_tip(P * L**2 / EI)
 
 RODNET_N = (10, 20, 40, 80, 160, 320, 640)
+RODNET_3_N = (2, 3, 4, 6, 8, 12, 16)  # coarse levels of `--extrapolate --levels 3`
 OPENSEES_N = (10, 20, 40, 80, 160, 320)
 PYELASTICA_N = (10, 20, 40)
 
@@ -47,6 +48,19 @@ def rodnet_runs():
         rows.append(dict(code="rodnet", n=n, seconds=t, all_seconds=times, value=y, error=error(x, y),
                          note=f'{res["iterations"]} its, {"converged" if res["converged"] else "NOT converged"}, '
                               f'own {res["seconds"]:.3g} s'))
+    return rows
+
+
+def rodnet_three_level_runs():
+    rows = []
+    for n in common.levels(RODNET_3_N):
+        t, times, res = common.repeat(
+            lambda: common.rodnet_solve(f"cantilever3_{n}", rodnet_scene(n), common.THREE_LEVELS))
+        x3 = res["extrapolation"]
+        x, y, _ = x3["rods"][0]["points"][-1]
+        rows.append(dict(code=common.RODNET_3, n=n, seconds=t, all_seconds=times, value=y, error=error(x, y),
+                         note=f'{n}/{2 * n}/{4 * n} edges, {x3["coarse_iterations"]}+{x3["middle_iterations"]}+'
+                              f'{x3["fine_iterations"]} its, {"converged" if res["converged"] else "NOT converged"}'))
     return rows
 
 

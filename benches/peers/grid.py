@@ -19,6 +19,7 @@ AREA, I = math.pi * R**2, math.pi * R**4 / 4
 G = E / (2 * (1 + NU))
 
 RODNET_K = (1, 2, 4, 8, 16, 32)
+RODNET_3_K = (1, 2, 4, 8)  # coarse levels of `--extrapolate --levels 3`
 OPENSEES_K = {10: (1, 2, 4, 8), 20: (1, 2, 4, 8, 16)}  # 20x20 is asymptotic from k = 8 only
 
 
@@ -55,6 +56,23 @@ def rodnet_runs(n):
         rows.append(dict(code="rodnet", n=k, seconds=t, all_seconds=times, value=-rod["points"][(n // 2) * k][2],
                          note=f'{res["iterations"]} its, {"converged" if res["converged"] else "NOT converged"}, '
                               f'own {res["seconds"]:.3g} s'))
+    return rows
+
+
+def rodnet_three_level_runs(n, reference):
+    """`--extrapolate --levels 3` from k = 1, 2, 4, 8 edges per bay; errors against `reference`
+    (rodnet's own Richardson extrapolate of its plain sequence)."""
+    rows = []
+    for k in common.levels(RODNET_3_K):
+        t, times, res = common.repeat(
+            lambda: common.rodnet_solve(f"grid3_{n}_{k}", rodnet_scene(n, k), common.THREE_LEVELS))
+        x3 = res["extrapolation"]
+        rod = next(r for r in x3["rods"] if r["name"] == f"x{n // 2}")
+        w = -rod["points"][(n // 2) * k][2]
+        rows.append(dict(code=common.RODNET_3, n=k, seconds=t, all_seconds=times, value=w,
+                         error=abs(w - reference) / abs(reference),
+                         note=f'{k}/{2 * k}/{4 * k} per bay, {x3["coarse_iterations"]}+{x3["middle_iterations"]}+'
+                              f'{x3["fine_iterations"]} its, {"converged" if res["converged"] else "NOT converged"}'))
     return rows
 
 

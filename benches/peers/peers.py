@@ -26,7 +26,7 @@ def cantilever():
         x, y = reference.rod_tip(c.L, c.EI, c.P, **kw)
         print(f"cantilever: the {name} rod's tip differs from the elastica's by {c.error(x, y):.2e} (relative)")
     print(f"cantilever: elastica tip ({c.REF[0]:.12f}, {c.REF[1]:.12f}) m")
-    runs = {"rodnet": c.rodnet_runs(), "OpenSees": c.opensees_runs()}
+    runs = {"rodnet": c.rodnet_runs(), common.RODNET_3: c.rodnet_three_level_runs(), "OpenSees": c.opensees_runs()}
     if not common.SKIP_PYELASTICA:
         runs["PyElastica"] = c.pyelastica_runs()
     return runs
@@ -50,6 +50,7 @@ def grid(n):
         w[code], p = g.richardson(rows)
         print(f"grid {n}x{n}: {code} Richardson extrapolate {w[code]:.10f} m (observed order {p:.2f})")
     print(f"grid {n}x{n}: extrapolates differ by {abs(w['rodnet'] - w['OpenSees']) / w['OpenSees']:.1e} (relative)")
+    runs[common.RODNET_3] = g.rodnet_three_level_runs(n, w["rodnet"])
     return runs
 
 
@@ -65,18 +66,22 @@ def report(problem, runs, run_rows, summary_rows):
     times = {code: [common.time_to([r["error"] for r in rs], [r["seconds"] for r in rs], e) for e in TARGETS]
              for code, rs in runs.items()}
     rows = []
+    ours = [c for c in times if c.startswith("rodnet")]
     for code, tt in times.items():
-        ratios = [None if a is None or b is None else a / b
-                  for a, b in zip((t[0] for t in times["rodnet"]), (t[0] for t in tt))]
-        rows.append([code] + [f"{fmt(a)} ({fmt(b)})" for a, b in tt]
-                    + ([""] * 3 if code == "rodnet" else [fmt(x) for x in ratios]))
-        for e, (a, b), x in zip(TARGETS, tt, ratios):
-            summary_rows.append([problem, code, e, a, b, x])
+        # A peer's row compares it with each rodnet series (plain, and 3 levels when run).
+        for mine in ours if not code.startswith("rodnet") else [None]:
+            ratios = [None if mine is None or a is None or b is None else a / b
+                      for a, b in zip((t[0] for t in times.get(mine, tt)), (t[0] for t in tt))]
+            label = code if mine in (None, "rodnet") else f"{code} (vs {mine})"
+            rows.append([label] + [f"{fmt(a)} ({fmt(b)})" for a, b in tt]
+                        + ([""] * 3 if mine is None else [fmt(x) for x in ratios]))
+            for e, (a, b), x in zip(TARGETS, tt, ratios):
+                summary_rows.append([problem, label, e, a, b, x])
     common.table(f"{problem}: seconds to a relative error, interpolated (first run meeting it); rodnet / peer",
                  ["code"] + [f"to {e:g}" for e in TARGETS] + [f"ratio {e:g}" for e in TARGETS], rows)
     rows = []
     for code, rs in runs.items():
-        for r in rs if code != "rodnet" else ():
+        for r in rs if not code.startswith("rodnet") else ():
             a, b = common.time_to([q["error"] for q in runs["rodnet"]], [q["seconds"] for q in runs["rodnet"]], r["error"])
             rows.append([code, r["n"], fmt(r["error"], ".2e"), fmt(r["seconds"], ".4g"), f"{fmt(a)} ({fmt(b)})",
                          fmt(None if a is None else a / r["seconds"])])
