@@ -12,6 +12,7 @@ use crate::math::vec::{norm, normalize, scalef, sub, transport};
 use crate::network::contact::Contact;
 use crate::network::roller::{Rollers, SlantedRoller};
 use crate::network::scratch::Scratch;
+use crate::rod::frames::EdgeRef;
 use crate::variables::{DofLayout, FrameRef, State, Unknowns, VarKind};
 
 pub use crate::variables::FIXED;
@@ -123,6 +124,9 @@ pub struct Model {
     pub edge_nodes: Vec<[usize; 2]>,
     /// Rest length of each global edge.
     pub rest_lengths: Vec<f64>,
+    /// Each edge's reference frame at rest: reported angles are measured against it
+    /// (`rod::frames::canonical_angle`), and a restart rebuilds the frames from it.
+    pub rest_edges: Vec<EdgeRef>,
     pub length_scale: f64,
     pub force_scale: f64,
     /// Contact and bound constraints, when the scene declares any.
@@ -161,6 +165,7 @@ impl Model {
         }
         Model {
             layout: p.layout,
+            rest_edges: p.state.edges.clone(),
             state: p.state,
             terms: p.terms,
             free,

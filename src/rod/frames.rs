@@ -42,6 +42,28 @@ pub fn edge_frame_of<T: Real>(e: V3<T>, theta: T, r: &EdgeRef) -> EdgeFrame<T> {
     }
 }
 
+/// The canonical θ = 0 director of an edge with unit tangent `t`: its rest reference director
+/// transported onto `t` in one step. Time-parallel transport along a solve depends on the path
+/// (its holonomy turns the reference director about the tangent), this does not, so angles
+/// measured against it are a function of the state alone. Where `t` is opposite the rest tangent
+/// the transport is undefined; the rest director made perpendicular to `t` (a half turn about
+/// it) stands in there.
+pub fn canonical_director(rest: &EdgeRef, t: [f64; 3]) -> [f64; 3] {
+    if 1.0 + dot(rest.t, t) > 1e-8 {
+        normalize(transport(rest.t, t, rest.u))
+    } else {
+        normalize(sub(rest.u, scalef(t, dot(rest.u, t))))
+    }
+}
+
+/// The material angle of an edge with unit tangent `t`, reference frame `r` (of the last
+/// accepted iterate) and angle `theta` against it, measured from [`canonical_director`] instead:
+/// θ plus the signed angle from the canonical director to the transported reference one.
+pub fn canonical_angle(rest: &EdgeRef, r: &EdgeRef, t: [f64; 3], theta: f64) -> f64 {
+    let u = normalize(transport(r.t, t, r.u));
+    theta + signed_angle(canonical_director(rest, t), u, t)
+}
+
 /// Unit tangent and the material directors at θ = 0 of an edge whose vector *along a stencil*
 /// is `along` (orientation as in [`oriented_frame_of`]): with θ' = sign·θ the material frame is
 /// m1 = cos θ' u + sin θ' v, m2 = cos θ' v − sin θ' u.
@@ -226,5 +248,51 @@ mod tests {
                 );
             }
         }
+    }
+
+    /// The canonical angle describes the same material director as the angle against the
+    /// path-transported reference frame (m1 = cos θ u + sin θ t × u either way), the canonical
+    /// director is the rest one where the tangent has not moved, and it stays a finite unit
+    /// vector perpendicular to the tangent even where the tangent is opposite the rest tangent.
+    #[test]
+    fn canonical_angles_describe_the_same_material_frame() {
+        let mut seed = 11u64;
+        let mut rnd = move || {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            ((seed >> 11) as f64 / (1u64 << 53) as f64) * 2.0 - 1.0
+        };
+        let director = |u: [f64; 3], t: [f64; 3], th: f64| {
+            add(scalef(u, th.cos()), scalef(cross(t, u), th.sin()))
+        };
+        for _ in 0..200 {
+            let mut v = || normalize([rnd(), rnd(), rnd()]);
+            let rest_t = v();
+            let rest = EdgeRef {
+                t: rest_t,
+                u: normalize(cross(rest_t, v())),
+            };
+            // A reference frame of some earlier iterate, and the current tangent near it.
+            let rt = normalize(add(rest_t, scalef(v(), 1.5)));
+            let r = EdgeRef {
+                t: rt,
+                u: normalize(cross(rt, v())),
+            };
+            let t = normalize(add(rt, scalef(v(), 0.4)));
+            let theta = 7.0 * rnd();
+            let c = canonical_angle(&rest, &r, t, theta);
+            let want = director(normalize(transport(r.t, t, r.u)), t, theta);
+            let got = director(canonical_director(&rest, t), t, c);
+            assert!(norm(sub(got, want)) < 1e-12, "{got:?} vs {want:?}");
+            assert!((c - theta).abs() <= std::f64::consts::PI + 1e-12);
+        }
+        let rest = EdgeRef {
+            t: [1.0, 0.0, 0.0],
+            u: [0.0, 1.0, 0.0],
+        };
+        assert_eq!(canonical_director(&rest, rest.t), rest.u);
+        let opposite = canonical_director(&rest, [-1.0, 0.0, 0.0]);
+        assert!((norm(opposite) - 1.0).abs() < 1e-15 && dot(opposite, [-1.0, 0.0, 0.0]) == 0.0);
     }
 }

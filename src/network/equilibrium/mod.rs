@@ -13,10 +13,12 @@ mod target;
 
 use serde::{Deserialize, Serialize};
 
+use crate::math::vec::{normalize, sub};
 use crate::network::assembly::Assembly;
 use crate::network::model::{EnergyParts, KindEnergy};
 use crate::network::rest;
 use crate::network::Network;
+use crate::rod::frames::canonical_angle;
 use crate::scene::types::{Load, SupportKind};
 use crate::scene::Scene;
 use crate::solver::NewtonReport;
@@ -155,7 +157,7 @@ impl Equilibrium {
             .map(|(i, (((r, energy), bending), forces))| RodEquilibrium {
                 name: r.name.clone(),
                 points: r.nodes.iter().map(|&n| m.position(n)).collect(),
-                twist: r.edges.iter().map(|&e| q[m.layout.theta(e)]).collect(),
+                twist: r.edges.iter().map(|&e| reported_angle(net, e)).collect(),
                 length: r.edges.iter().map(|&e| edge_length(net, e)).sum(),
                 energy,
                 bending,
@@ -317,4 +319,15 @@ fn axial_force(net: &Network, e: usize) -> f64 {
     let s = &net.model.terms.stretch[e];
     debug_assert_eq!(s.edge, e, "one stretch term per edge, in edge order");
     s.ea * (edge_length(net, e) / s.rest_length - 1.0)
+}
+
+/// Edge `e`'s material angle as reported: against its rest reference frame transported onto the
+/// current tangent in one step, so that it depends on the state alone, not on the solve's path,
+/// and a restart from the results (`network/initial.rs`) rebuilds the same material frame.
+fn reported_angle(net: &Network, e: usize) -> f64 {
+    let m = &net.model;
+    let [a, b] = m.edge_nodes[e];
+    let t = normalize(sub(m.position(b), m.position(a)));
+    let theta = m.state.q[m.layout.theta(e)];
+    canonical_angle(&m.rest_edges[e], &m.state.edges[e], t, theta)
 }
