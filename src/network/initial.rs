@@ -3,7 +3,7 @@
 
 use crate::math::vec::{add, normalize, rotation_between, scalef, sub};
 use crate::network::Network;
-use crate::rod::frames::{canonical_director, EdgeRef};
+use crate::rod::frames::{canonical_directors, EdgeRef};
 
 /// One rod of an earlier result: its nodes (after subdivision) and edge twist angles.
 #[derive(Debug, Clone, PartialEq)]
@@ -81,16 +81,17 @@ pub fn place(net: &mut Network, rods: &[RodState]) -> Result<(), String> {
     }
     net.model.state.q = q;
     turn_frames(net);
-    // The results' angles are measured from each edge's canonical director (its rest reference
-    // director transported onto the tangent in one step): the reference frames start there.
-    let m = &mut net.model;
-    for (e, [a, b]) in m.edge_nodes.iter().enumerate() {
-        let t = normalize(sub(
-            layout.position(&m.state.q, *b),
-            layout.position(&m.state.q, *a),
-        ));
-        let u = canonical_director(&m.rest_edges[e], t);
-        m.state.edges[e] = EdgeRef { t, u };
+    // The results' angles are measured from each rod's canonical directors (its first edge's
+    // rest frame carried along the rod): the reference frames start there.
+    for r in &net.rods {
+        let tangents = net.rod_tangents(r);
+        let Some(&first) = r.edges.first() else {
+            continue;
+        };
+        let directors = canonical_directors(&net.model.rest_edges[first], &tangents);
+        for ((&e, t), u) in r.edges.iter().zip(tangents).zip(directors) {
+            net.model.state.edges[e] = EdgeRef { t, u };
+        }
     }
     net.model.commit();
     Ok(())

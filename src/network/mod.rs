@@ -48,6 +48,18 @@ impl Network {
         self.model.layout.n_nodes()
     }
 
+    /// Unit tangents of rod `r`'s edges, in order, at the current state.
+    pub fn rod_tangents(&self, r: &RodInfo) -> Vec<[f64; 3]> {
+        let m = &self.model;
+        r.edges
+            .iter()
+            .map(|&e| {
+                let [a, b] = m.edge_nodes[e];
+                crate::math::vec::normalize(crate::math::vec::sub(m.position(b), m.position(a)))
+            })
+            .collect()
+    }
+
     /// The rod named `name`.
     pub fn rod(&self, name: &str) -> Option<&RodInfo> {
         self.rods.iter().find(|r| r.name == name)

@@ -13,12 +13,11 @@ mod target;
 
 use serde::{Deserialize, Serialize};
 
-use crate::math::vec::{normalize, sub};
 use crate::network::assembly::Assembly;
 use crate::network::model::{EnergyParts, KindEnergy};
 use crate::network::rest;
 use crate::network::Network;
-use crate::rod::frames::canonical_angle;
+use crate::rod::frames::{canonical_angle, canonical_directors};
 use crate::scene::types::{Load, SupportKind};
 use crate::scene::Scene;
 use crate::solver::NewtonReport;
@@ -157,7 +156,7 @@ impl Equilibrium {
             .map(|(i, (((r, energy), bending), forces))| RodEquilibrium {
                 name: r.name.clone(),
                 points: r.nodes.iter().map(|&n| m.position(n)).collect(),
-                twist: r.edges.iter().map(|&e| reported_angle(net, e)).collect(),
+                twist: reported_angles(net, r),
                 length: r.edges.iter().map(|&e| edge_length(net, e)).sum(),
                 energy,
                 bending,
@@ -321,13 +320,24 @@ fn axial_force(net: &Network, e: usize) -> f64 {
     s.ea * (edge_length(net, e) / s.rest_length - 1.0)
 }
 
-/// Edge `e`'s material angle as reported: against its rest reference frame transported onto the
-/// current tangent in one step, so that it depends on the state alone, not on the solve's path,
-/// and a restart from the results (`network/initial.rs`) rebuilds the same material frame.
-fn reported_angle(net: &Network, e: usize) -> f64 {
+/// The material angles of rod `r`'s edges as reported: against its canonical directors (the
+/// rest frame of its first edge carried along the rod by space-parallel transport,
+/// `rod::frames::canonical_directors`), so that they depend on the state alone, not on the
+/// solve's path, and a restart from the results (`network/initial.rs`) rebuilds the same
+/// material frames.
+fn reported_angles(net: &Network, r: &crate::network::RodInfo) -> Vec<f64> {
     let m = &net.model;
-    let [a, b] = m.edge_nodes[e];
-    let t = normalize(sub(m.position(b), m.position(a)));
-    let theta = m.state.q[m.layout.theta(e)];
-    canonical_angle(&m.rest_edges[e], &m.state.edges[e], t, theta)
+    let tangents = net.rod_tangents(r);
+    let Some(&first) = r.edges.first() else {
+        return Vec::new();
+    };
+    canonical_directors(&m.rest_edges[first], &tangents)
+        .into_iter()
+        .zip(&tangents)
+        .zip(&r.edges)
+        .map(|((c, &t), &e)| {
+            let theta = m.state.q[m.layout.theta(e)];
+            canonical_angle(c, &m.state.edges[e], t, theta)
+        })
+        .collect()
 }
