@@ -71,12 +71,34 @@ pub fn canonical_directors(rest_first: &EdgeRef, tangents: &[[f64; 3]]) -> Vec<[
     out
 }
 
-/// The material angle of an edge with unit tangent `t`, reference frame `r` (of the last
-/// accepted iterate) and angle `theta` against it, measured from the canonical director `c`
-/// instead: θ plus the signed angle from `c` to the transported reference director.
-pub fn canonical_angle(c: [f64; 3], r: &EdgeRef, t: [f64; 3], theta: f64) -> f64 {
-    let u = normalize(transport(r.t, t, r.u));
-    theta + signed_angle(c, u, t)
+/// The material angles of a rod's edges measured from their [`canonical_directors`], from their
+/// unit tangents, reference frames `refs` (of the last accepted iterate) and angles `thetas`
+/// against those: θ plus the signed angle β from the canonical director to the transported
+/// reference one. β is unwrapped along the rod (by 2π, against the previous edge's β plus the
+/// reference twist between the two reference frames), so that neighbouring angles differ by
+/// the discrete twist between them, not by it plus 2π, where the reference frames have turned
+/// half a turn from the canonical ones.
+pub fn canonical_angles(
+    rest_first: &EdgeRef,
+    tangents: &[[f64; 3]],
+    refs: &[EdgeRef],
+    thetas: &[f64],
+) -> Vec<f64> {
+    let directors = canonical_directors(rest_first, tangents);
+    let mut out = Vec::with_capacity(tangents.len());
+    let mut prev: Option<([f64; 3], [f64; 3], f64)> = None;
+    for k in 0..tangents.len() {
+        let t = tangents[k];
+        let u = normalize(transport(refs[k].t, t, refs[k].u));
+        let mut beta = signed_angle(directors[k], u, t);
+        if let Some((pt, pu, pbeta)) = prev {
+            let reference_twist = signed_angle(transported(pt, pu, t), u, t);
+            beta = unwrap_angle(beta, pbeta + reference_twist);
+        }
+        prev = Some((t, u, beta));
+        out.push(thetas[k] + beta);
+    }
+    out
 }
 
 /// Unit tangent and the material directors at θ = 0 of an edge whose vector *along a stencil*
@@ -265,8 +287,10 @@ mod tests {
         }
     }
 
-    /// The canonical angle describes the same material director as the angle against the
-    /// path-transported reference frame (m1 = cos θ u + sin θ t × u either way); the canonical
+    /// The canonical angles describe the same material directors as the angles against the
+    /// path-transported reference frames (m1 = cos θ u + sin θ t × u either way), and
+    /// neighbouring ones differ by θ's difference plus the reference twist, also where the
+    /// reference frames have turned about half a turn from the canonical ones; the canonical
     /// directors are the rest one where the tangents have not moved, have zero reference twist
     /// between neighbours, and stay finite unit vectors perpendicular to their tangents even
     /// where a tangent is opposite the one before it.
@@ -282,15 +306,15 @@ mod tests {
         let director = |u: [f64; 3], t: [f64; 3], th: f64| {
             add(scalef(u, th.cos()), scalef(cross(t, u), th.sin()))
         };
-        for _ in 0..50 {
+        let pi = std::f64::consts::PI;
+        for case in 0..60 {
             let mut v = || normalize([rnd(), rnd(), rnd()]);
             let rest_t = v();
             let rest = EdgeRef {
                 t: rest_t,
                 u: normalize(cross(rest_t, v())),
             };
-            // A rod of six edges turning away from the rest tangent, each with a reference
-            // frame of some earlier iterate near its tangent.
+            // A rod of six edges turning away from the rest tangent.
             let mut t = rest_t;
             let tangents: Vec<[f64; 3]> = (0..6)
                 .map(|_| {
@@ -299,20 +323,39 @@ mod tests {
                 })
                 .collect();
             let c = canonical_directors(&rest, &tangents);
-            for (k, &t) in tangents.iter().enumerate() {
-                let rt = normalize(add(t, scalef(v(), 0.4)));
-                let r = EdgeRef {
-                    t: rt,
-                    u: normalize(cross(rt, v())),
-                };
-                let theta = 7.0 * v()[0];
-                let a = canonical_angle(c[k], &r, t, theta);
-                let want = director(normalize(transport(r.t, t, r.u)), t, theta);
-                assert!(norm(sub(director(c[k], t, a), want)) < 1e-12);
-                assert!((a - theta).abs() <= std::f64::consts::PI + 1e-12);
+            // Reference frames: the canonical ones turned about the tangent by angles near ±π
+            // in every third case (held there by a long solve's holonomy), and tilted a little
+            // (a frame of the last accepted iterate, before this tangent).
+            let turn0 = if case % 3 == 0 {
+                pi - 0.05
+            } else {
+                3.0 * v()[0]
+            };
+            let refs: Vec<EdgeRef> = (0..6)
+                .map(|k| {
+                    let turn = turn0 + 0.04 * k as f64 * if case % 2 == 0 { 1.0 } else { -1.0 };
+                    let u = director(c[k], tangents[k], turn);
+                    let rt = normalize(add(tangents[k], scalef(v(), 0.2)));
+                    EdgeRef {
+                        t: rt,
+                        u: normalize(transport(tangents[k], rt, u)),
+                    }
+                })
+                .collect();
+            let thetas: Vec<f64> = (0..6).map(|_| 7.0 * v()[0]).collect();
+            let a = canonical_angles(&rest, &tangents, &refs, &thetas);
+            for k in 0..6 {
+                let t = tangents[k];
+                let u = normalize(transport(refs[k].t, t, refs[k].u));
+                let (want, got) = (director(u, t, thetas[k]), director(c[k], t, a[k]));
+                assert!(norm(sub(got, want)) < 1e-12, "{case} {k}");
                 if k > 0 {
                     let twist = signed_angle(transport(tangents[k - 1], t, c[k - 1]), c[k], t);
                     assert!(twist.abs() < 1e-12, "{twist}");
+                    let up = normalize(transport(refs[k - 1].t, tangents[k - 1], refs[k - 1].u));
+                    let r = signed_angle(transport(tangents[k - 1], t, up), u, t);
+                    let d = a[k] - a[k - 1] - (thetas[k] - thetas[k - 1]);
+                    assert!((d - r).abs() < 1e-9, "{case} {k}: {d} vs {r}");
                 }
             }
         }

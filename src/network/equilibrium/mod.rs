@@ -17,7 +17,7 @@ use crate::network::assembly::Assembly;
 use crate::network::model::{EnergyParts, KindEnergy};
 use crate::network::rest;
 use crate::network::Network;
-use crate::rod::frames::{canonical_angle, canonical_directors};
+use crate::rod::frames::canonical_angles;
 use crate::scene::types::{Load, SupportKind};
 use crate::scene::Scene;
 use crate::solver::NewtonReport;
@@ -331,13 +331,11 @@ fn reported_angles(net: &Network, r: &crate::network::RodInfo) -> Vec<f64> {
     let Some(&first) = r.edges.first() else {
         return Vec::new();
     };
-    canonical_directors(&m.rest_edges[first], &tangents)
-        .into_iter()
-        .zip(&tangents)
-        .zip(&r.edges)
-        .map(|((c, &t), &e)| {
-            let theta = m.state.q[m.layout.theta(e)];
-            canonical_angle(c, &m.state.edges[e], t, theta)
-        })
-        .collect()
+    let refs: Vec<_> = r.edges.iter().map(|&e| m.state.edges[e]).collect();
+    let thetas: Vec<f64> = r
+        .edges
+        .iter()
+        .map(|&e| m.state.q[m.layout.theta(e)])
+        .collect();
+    canonical_angles(&m.rest_edges[first], &tangents, &refs, &thetas)
 }
