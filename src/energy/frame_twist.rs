@@ -63,5 +63,13 @@ impl Term<11> for FrameTwist {
         let y = Self::reduced(&self.gather(&st.q));
         Some((self.slot, self.reference_twist::<f64>(st, &y)))
     }
+    fn nearest_turn(&self, st: &State) -> Option<(usize, f64)> {
+        let y = Self::reduced(&self.gather(&st.q));
+        let (r, m) = (
+            self.reference_twist::<f64>(st, &y),
+            self.twist::<f64>(st, &y),
+        );
+        Some((self.slot, super::nearest_turn(r, m, self.rest)))
+    }
     reduced_term!(11, 8);
 }

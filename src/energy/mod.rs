@@ -73,6 +73,20 @@ pub trait Term<const N: usize>: Sync + Send {
     fn remembered(&self, _st: &State) -> Option<(usize, f64)> {
         None
     }
+
+    /// For a twist term, where the 2π branch of its reference twist is not known (a restart
+    /// from results, which hold angles but no branches): `(slot, reference twist)` on the branch
+    /// that puts its discrete twist within half a turn of its rest value.
+    fn nearest_turn(&self, _st: &State) -> Option<(usize, f64)> {
+        None
+    }
+}
+
+/// The reference twist `reference` (with discrete twist `twist` and rest value `rest`) moved by
+/// whole turns so that the discrete twist lies within half a turn of its rest value.
+pub fn nearest_turn(reference: f64, twist: f64, rest: f64) -> f64 {
+    let turns = ((twist - rest) / std::f64::consts::TAU).round();
+    reference - turns * std::f64::consts::TAU
 }
 
 /// A term whose N variables enter only through M ≤ N linear combinations y = A x (edge vectors
@@ -167,6 +181,9 @@ macro_rules! bend_twist_items {
         }
         fn remembered(&self, st: &State) -> Option<(usize, f64)> {
             self.twist.remembered(st)
+        }
+        fn nearest_turn(&self, st: &State) -> Option<(usize, f64)> {
+            self.twist.nearest_turn(st)
         }
         fn eval<T: Real>(&self, st: &State, x: &[T; 11]) -> T {
             let [b, t] = self.energies(st, x);

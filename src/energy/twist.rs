@@ -78,6 +78,14 @@ impl Term<11> for Twist {
         let y = Self::reduced(&self.gather(&st.q));
         Some((self.slot, self.reference_twist::<f64>(st, &y)))
     }
+    fn nearest_turn(&self, st: &State) -> Option<(usize, f64)> {
+        let y = Self::reduced(&self.gather(&st.q));
+        let (r, m) = (
+            self.reference_twist::<f64>(st, &y),
+            self.twist::<f64>(st, &y),
+        );
+        Some((self.slot, super::nearest_turn(r, m, self.rest)))
+    }
     fn eval<T: Real>(&self, st: &State, x: &[T; 11]) -> T {
         self.eval_reduced(st, &Self::reduced(x))
     }

@@ -94,6 +94,7 @@ pub fn place(net: &mut Network, rods: &[RodState]) -> Result<(), String> {
         }
     }
     net.model.commit();
+    net.model.nearest_turns();
     Ok(())
 }
 

@@ -314,6 +314,26 @@ impl Model {
         }
     }
 
+    /// Puts every reference twist on the 2π branch that brings its discrete twist within half a
+    /// turn of its rest value (`Term::nearest_turn`): a state placed from results (which hold
+    /// angles, not branches) then keeps the turns its angles carry, e.g. a rod twisted by ten
+    /// turns at a clamp, instead of unwinding them at the frames.
+    pub fn nearest_turns(&mut self) {
+        struct Nearest<'a>(&'a State, Vec<(usize, f64)>);
+        impl TermVisitor for Nearest<'_> {
+            fn visit<const N: usize, E: Term<N>>(&mut self, _: usize, terms: &[E]) {
+                let st = self.0;
+                self.1
+                    .extend(terms.iter().filter_map(|t| t.nearest_turn(st)));
+            }
+        }
+        let mut nearest = Nearest(&self.state, Vec::new());
+        self.terms.visit(&mut nearest);
+        for (slot, v) in nearest.1 {
+            self.state.twist_prev[slot] = v;
+        }
+    }
+
     /// Sets the load factor and the prescribed variables for continuation parameter `lambda`.
     pub fn set_load(&mut self, lambda: f64) {
         let held = !self.staged.is_empty() || self.ramp.is_some();

@@ -79,22 +79,11 @@ fn solve_refined(
     coarse: &Solution,
     settings: &NewtonSettings,
 ) -> Result<Solution, JobError> {
-    // A results state holds each reference twist only modulo 2π: a coarse state twisted by
-    // more than half a turn between neighbouring frames would restart untwisted, so the fine
-    // scene is then solved from rest like the coarse one.
-    let wrapped = coarse
-        .network
-        .model
-        .state
-        .twist_prev
-        .iter()
-        .any(|t| t.abs() > std::f64::consts::PI);
-    if wrapped {
-        pipeline::solve_scene(fine_scene, settings).map_err(JobError::Scene)
-    } else {
-        let start = refined_state(&crate::io::initial::of_results(&coarse.results));
-        pipeline::solve_scene_from(fine_scene, settings, &start)
-    }
+    // The restart keeps the turns the coarse angles carry (`Model::nearest_turns`: every
+    // discrete twist within half a turn of its rest value, which a refined state of a converged
+    // coarse one has).
+    let start = refined_state(&crate::io::initial::of_results(&coarse.results));
+    pipeline::solve_scene_from(fine_scene, settings, &start)
 }
 
 /// The scene with every rod's subdivision doubled (input vertex k stays node k·subdivide, so
