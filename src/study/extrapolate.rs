@@ -43,15 +43,16 @@ pub fn solve_levels(
             "{levels} levels: the extrapolation uses 2 or 3"
         )));
     }
-    if !scene.stages.is_empty() {
-        return Err(JobError::Refused(
-            "a scene with `stages` cannot be extrapolated yet (each stage would need its own \
-             pair of solves); remove --extrapolate or the stages"
-                .into(),
-        ));
-    }
+    // A staged scene is solved through its stages at every level, from rest: its last stage is
+    // extrapolated (a restart would need every stage's refined state).
+    let staged = !scene.stages.is_empty();
+    let solve_level = |sc: &Scene, coarser: Option<&Solution>| match coarser {
+        _ if staged => pipeline::solve_stages(sc, settings, |_| {}).map_err(JobError::Scene),
+        None => pipeline::solve_scene(sc, settings).map_err(JobError::Scene),
+        Some(c) => solve_refined(sc, c, settings),
+    };
     let t0 = Instant::now();
-    let mut solves = vec![pipeline::solve_scene(scene, settings).map_err(JobError::Scene)?];
+    let mut solves = vec![solve_level(scene, None)?];
     let mut level_scene = scene.clone();
     for _ in 1..levels {
         let last = solves.last().unwrap();
@@ -59,7 +60,7 @@ pub fn solve_levels(
             return Ok(solves.pop().unwrap());
         }
         level_scene = refined(&level_scene);
-        let next = solve_refined(&level_scene, last, settings)?;
+        let next = solve_level(&level_scene, Some(last))?;
         solves.push(next);
     }
     let seconds = t0.elapsed().as_secs_f64();
