@@ -4,6 +4,9 @@
 //! - `grid_*`: a 20×20 grid of crossing rods (Ball joints at 400 crossings, pinned ends, gravity),
 //!   subdivide 4: energy+gradient+Hessian assembly, symbolic analysis, numeric factorization, and
 //!   one full Newton iteration (assembly, factorization, solve, length projection, line search).
+//! - `kernel_*`: the fused bend-and-twist kernels alone, one thread, no scatter: every
+//!   rod-interior stencil of that grid (`BendTwist`), every half-stencil of the same grid with
+//!   rigid joints (`FrameBendTwist`).
 //! - `cantilever_solve`: the large-deflection cantilever (PL²/EI = 2) from rest, N edges.
 
 mod common;
