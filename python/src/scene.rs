@@ -265,12 +265,15 @@ impl Scene {
     ///
     /// Settings override the scene's `solver` block: `tolerance`, `max_iterations`,
     /// `load_steps`, `time_limit` (s), `continuation` ("load" or "arc_length"); `modes=K` adds
-    /// the K lowest eigenvalues (`results.stability`); `progress(step, iteration, residual,
+    /// the K lowest eigenvalues (`results.stability`); `extrapolate=2` or `3` also solves at
+    /// twice (and four times) every rod's subdivision and adds the Richardson extrapolate
+    /// (`results.to_dict()["extrapolation"]`, as `rodnet solve --extrapolate --levels`; the
+    /// other results are the finest solve's); `progress(step, iteration, residual,
     /// energy)` is called after every Newton iteration (an exception it raises stops the solve
     /// and is re-raised). Returns `Results` (also when the solve does not converge: see
     /// `converged`); raises `SceneError` for settings or a scene the builder refuses and
     /// `SolveError` when there are no results.
-    #[pyo3(signature = (*, tolerance=None, max_iterations=None, load_steps=None, time_limit=None, continuation=None, modes=None, progress=None))]
+    #[pyo3(signature = (*, tolerance=None, max_iterations=None, load_steps=None, time_limit=None, continuation=None, modes=None, progress=None, extrapolate=None))]
     #[allow(clippy::too_many_arguments)]
     fn solve(
         &self,
@@ -282,7 +285,14 @@ impl Scene {
         continuation: Option<&str>,
         modes: Option<usize>,
         progress: Option<Py<PyAny>>,
+        extrapolate: Option<usize>,
     ) -> PyResult<Results> {
+        if extrapolate.is_some_and(|l| !(2..=3).contains(&l)) {
+            return Err(PyValueError::new_err(format!(
+                "extrapolate takes 2 or 3 levels, got {}",
+                extrapolate.unwrap_or(0)
+            )));
+        }
         let mut sc = self.scene.clone();
         let s = &mut sc.solver;
         s.tolerance = tolerance.or(s.tolerance);
@@ -308,7 +318,10 @@ impl Scene {
         }
         rscene::validate::validate(&sc).map_err(|e| invalid(py, None, "", &e))?;
         let job = Job::Scene(Box::new(sc));
-        let outcome = solve_released(py, progress, |hook| run::solve(&job, modes, hook))?;
+        let outcome = solve_released(py, progress, |hook| match (&job, extrapolate) {
+            (Job::Scene(sc), Some(levels)) => run::solve_extrapolated(sc, levels, modes, hook),
+            _ => run::solve(&job, modes, hook),
+        })?;
         match outcome {
             Ok(solved) => Ok(Results::new(solved)),
             Err(Failure::Scene(e)) => Err(invalid(py, self.file.as_deref(), &self.src, &e)),

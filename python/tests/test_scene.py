@@ -40,6 +40,25 @@ def test_results_dict_is_the_results_json(networks, tmp_path):
     assert len(vertices) == 41
 
 
+def test_extrapolated_solve(networks):
+    # As `rodnet solve --extrapolate --levels 3`: the results are the finest solve's (4 x 40
+    # edges), the extrapolate is at the scene's 41 nodes, its own error estimated far below the
+    # finest solve's (6e-8 against 5e-6 m). Against Bisshopp & Drucker's inextensible values the
+    # extrapolate is off by the rod's stretch (P/EA L = 5e-5).
+    scene = rodnet.load_scene(networks / "cantilever.ron")
+    res = scene.solve(extrapolate=3)
+    x = res.to_dict()["extrapolation"]
+    assert x["levels"] == 3 and x["subdivide"] == [[40, 160]]
+    assert res.points(0).shape == (161, 3) and len(x["rods"][0]["points"]) == 41
+    assert x["extrapolate_error_estimate"] < 0.1 * x["error_estimate"]
+    tip = x["rods"][0]["points"][-1]
+    assert abs(-tip[1] - 0.49345748) < 1e-4 and abs((1.0 - tip[0]) - 0.16064172) < 1e-4
+    assert scene.solve(extrapolate=2).to_dict()["extrapolation"]["levels"] == 2
+    assert "extrapolation" not in scene.solve().to_dict()
+    with pytest.raises(ValueError, match="extrapolate"):
+        scene.solve(extrapolate=4)
+
+
 def test_scene_round_trips_through_ron_and_dicts(networks, cantilever_dict, tmp_path):
     s = rodnet.Scene.from_dict(cantilever_dict)
     assert s.rods == ["beam"] and s.materials == ["steel"]

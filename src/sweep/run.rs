@@ -99,6 +99,38 @@ pub fn solve(
     Ok(Solved { results, gridshell })
 }
 
+/// Solves a scene at `levels` (2 or 3) subdivisions and extrapolates (`study::extrapolate`,
+/// as `rodnet solve --extrapolate --levels`), with the lowest `modes` eigenvalues at the finest
+/// equilibrium if asked. Failures as in [`solve`]; `levels` outside 2–3 is a scene failure of
+/// nothing but that value.
+pub fn solve_extrapolated(
+    scene: &crate::scene::Scene,
+    levels: usize,
+    modes: Option<usize>,
+    progress: Option<Progress>,
+) -> Result<Solved, Failure> {
+    let mut settings = pipeline::settings_of(scene);
+    settings.progress = progress;
+    let mut sol =
+        crate::study::extrapolate::solve_levels(scene, &settings, levels).map_err(|e| match e {
+            pipeline::JobError::Scene(e) => Failure::Scene(e),
+            pipeline::JobError::Refused(m) => Failure::Solve(m),
+        })?;
+    if let (Some(k), true) = (modes, sol.results.all_finite()) {
+        pipeline::analyse_modes(&mut sol, k)
+            .map_err(|e| Failure::Solve(format!("eigen-analysis: {e}")))?;
+    }
+    if !sol.results.all_finite() {
+        return Err(Failure::Solve(
+            "the solve produced non-finite values".into(),
+        ));
+    }
+    Ok(Solved {
+        results: sol.results,
+        gridshell: None,
+    })
+}
+
 /// The message of a caught panic.
 pub fn panic_message(p: &(dyn std::any::Any + Send)) -> String {
     p.downcast_ref::<&str>()
