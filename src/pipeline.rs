@@ -68,6 +68,15 @@ pub fn build_within_limit(
     Ok(network)
 }
 
+/// The scene's memory lower bound against the limit (`--max-memory`), before anything is built.
+pub fn check_scene_memory(scene: &Scene) -> Result<(), FieldError> {
+    let limit = memory_limit();
+    if limit == u64::MAX {
+        return Ok(());
+    }
+    budget::check_scene(scene, limit)
+}
+
 /// The solver settings a scene asks for.
 pub fn settings_of(scene: &Scene) -> NewtonSettings {
     NewtonSettings::default()

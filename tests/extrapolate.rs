@@ -262,6 +262,29 @@ fn extrapolate_on_the_command_line() {
     ] {
         assert!(x[key].is_number(), "{key}: {x}");
     }
+    // A finest level above the memory limit is refused before anything is written, naming the
+    // level (the cantilever at ×4 needs about 9.2 MiB; its ×1 and ×2 levels fit in 9 MiB).
+    let big = d.join("big.json");
+    let out = rodnet()
+        .args([
+            "solve",
+            "networks/cantilever.ron",
+            "--extrapolate",
+            "--levels",
+            "3",
+        ])
+        .args(["--max-memory", "9M", "--json"])
+        .arg(&big)
+        .output()
+        .unwrap();
+    assert_eq!(out.status.code(), Some(2), "{out:?}");
+    let err = String::from_utf8_lossy(&out.stderr);
+    assert!(
+        err.contains("level 3 of --extrapolate") && err.contains("subdivide"),
+        "{err}"
+    );
+    assert!(!big.exists());
+
     // --levels takes 2 or 3, and only with --extrapolate.
     for args in [
         &["--extrapolate", "--levels", "4"][..],

@@ -51,16 +51,36 @@ pub fn solve_levels(
         None => pipeline::solve_scene(sc, settings).map_err(JobError::Scene),
         Some(c) => solve_refined(sc, c, settings),
     };
+    // A refusal of a refined level (its memory estimate) says which level it is.
+    let at_level = |k: usize| {
+        move |e: JobError| match e {
+            JobError::Scene(mut f) if k > 0 => {
+                f.message = format!(
+                    "{} (at ×{} the subdivision: level {} of --extrapolate)",
+                    f.message,
+                    1 << k,
+                    k + 1
+                );
+                JobError::Scene(f)
+            }
+            e => e,
+        }
+    };
+    // The finest level is the largest: its lower bound is checked before any solve.
+    let finest = (1..levels).fold(scene.clone(), |s, _| refined(&s));
+    pipeline::check_scene_memory(&finest)
+        .map_err(JobError::Scene)
+        .map_err(at_level(levels - 1))?;
     let t0 = Instant::now();
     let mut solves = vec![solve_level(scene, None)?];
     let mut level_scene = scene.clone();
-    for _ in 1..levels {
+    for k in 1..levels {
         let last = solves.last().unwrap();
         if !last.results.converged || !last.results.all_finite() {
             return Ok(solves.pop().unwrap());
         }
         level_scene = refined(&level_scene);
-        let next = solve_level(&level_scene, Some(last))?;
+        let next = solve_level(&level_scene, Some(last)).map_err(at_level(k))?;
         solves.push(next);
     }
     let seconds = t0.elapsed().as_secs_f64();
