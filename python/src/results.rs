@@ -129,6 +129,17 @@ impl Results {
             None => Ok(None),
         }
     }
+    /// The Richardson extrapolation (`extrapolate=2` or `3`), or None.
+    #[getter]
+    fn extrapolation<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyAny>>> {
+        match &self.solved.results.extrapolation {
+            Some(x) => Ok(Some(crate::to_python(
+                py,
+                &serde_json::to_value(x).expect("serializes"),
+            )?)),
+            None => Ok(None),
+        }
+    }
     /// The generated gridshell's block (options, sizes, shape metrics), or None.
     #[getter]
     fn gridshell<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyAny>>> {

@@ -267,7 +267,7 @@ impl Scene {
     /// `load_steps`, `time_limit` (s), `continuation` ("load" or "arc_length"); `modes=K` adds
     /// the K lowest eigenvalues (`results.stability`); `extrapolate=2` or `3` also solves at
     /// twice (and four times) every rod's subdivision and adds the Richardson extrapolate
-    /// (`results.to_dict()["extrapolation"]`, as `rodnet solve --extrapolate --levels`; the
+    /// (`results.extrapolation`, as `rodnet solve --extrapolate --levels`; the
     /// other results are the finest solve's); `progress(step, iteration, residual,
     /// energy)` is called after every Newton iteration (an exception it raises stops the solve
     /// and is re-raised). Returns `Results` (also when the solve does not converge: see

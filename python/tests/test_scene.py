@@ -47,14 +47,16 @@ def test_extrapolated_solve(networks):
     # extrapolate is off by the rod's stretch (P/EA L = 5e-5).
     scene = rodnet.load_scene(networks / "cantilever.ron")
     res = scene.solve(extrapolate=3)
-    x = res.to_dict()["extrapolation"]
+    x = res.extrapolation
+    assert x == res.to_dict()["extrapolation"]
     assert x["levels"] == 3 and x["subdivide"] == [[40, 160]]
     assert res.points(0).shape == (161, 3) and len(x["rods"][0]["points"]) == 41
     assert x["extrapolate_error_estimate"] < 0.1 * x["error_estimate"]
     tip = x["rods"][0]["points"][-1]
     assert abs(-tip[1] - 0.49345748) < 1e-4 and abs((1.0 - tip[0]) - 0.16064172) < 1e-4
     assert scene.solve(extrapolate=2).to_dict()["extrapolation"]["levels"] == 2
-    assert "extrapolation" not in scene.solve().to_dict()
+    plain = scene.solve()
+    assert plain.extrapolation is None and "extrapolation" not in plain.to_dict()
     with pytest.raises(ValueError, match="extrapolate"):
         scene.solve(extrapolate=4)
 
