@@ -95,6 +95,15 @@ impl LoadRamp {
     }
 }
 
+/// Which 2π branch of each reference twist `Model::store_reference_twists` keeps.
+#[derive(Debug, Clone, Copy)]
+enum TwistBranch {
+    /// Unwrapped against the last accepted value (`Term::remembered`).
+    Remembered,
+    /// Within half a turn of rest in discrete twist (`Term::nearest_turn`).
+    NearestTurn,
+}
+
 /// Characteristic length (m) and force (N) that make residuals relative.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct Scales {
@@ -286,23 +295,10 @@ impl Model {
             r.t = t;
         }
         // Reference twists must be recomputed with the new edge references, which give the same
-        // angles as before (transport composes), then stored for unwrapping.
-        struct Remember<'a>(&'a State, Vec<(usize, f64)>);
-        impl TermVisitor for Remember<'_> {
-            fn visit<const N: usize, E: Term<N>>(&mut self, _: usize, terms: &[E]) {
-                let st = self.0;
-                self.1.extend(terms.iter().filter_map(|t| t.remembered(st)));
-            }
-        }
-        let mut buffer = std::mem::take(&mut self.scratch.get().remembered);
-        buffer.clear();
-        let mut remember = Remember(&self.state, buffer);
-        self.terms.visit(&mut remember);
-        // Frame twists depend on ω, so fold ω only after their values are taken.
-        let remembered = remember.1;
-        for &(slot, v) in &remembered {
-            self.state.twist_prev[slot] = v;
-        }
+        // angles as before (transport composes), then stored for unwrapping. Frame twists depend
+        // on ω, so fold ω only after their values are taken.
+        let buffer = std::mem::take(&mut self.scratch.get().remembered);
+        let remembered = self.store_reference_twists(TwistBranch::Remembered, buffer);
         self.scratch.get().remembered = remembered;
         for f in 0..self.layout.n_frames() {
             let vars = self.layout.frame(f);
@@ -319,19 +315,34 @@ impl Model {
     /// angles, not branches) then keeps the turns its angles carry, e.g. a rod twisted by ten
     /// turns at a clamp, instead of unwinding them at the frames.
     pub fn nearest_turns(&mut self) {
-        struct Nearest<'a>(&'a State, Vec<(usize, f64)>);
-        impl TermVisitor for Nearest<'_> {
+        self.store_reference_twists(TwistBranch::NearestTurn, Vec::new());
+    }
+
+    /// Stores every twist term's reference twist on the branch `which` picks in
+    /// `State::twist_prev`, collecting them in `buffer` (returned for reuse).
+    fn store_reference_twists(
+        &mut self,
+        which: TwistBranch,
+        mut buffer: Vec<(usize, f64)>,
+    ) -> Vec<(usize, f64)> {
+        struct Collect<'a>(&'a State, TwistBranch, Vec<(usize, f64)>);
+        impl TermVisitor for Collect<'_> {
             fn visit<const N: usize, E: Term<N>>(&mut self, _: usize, terms: &[E]) {
-                let st = self.0;
-                self.1
-                    .extend(terms.iter().filter_map(|t| t.nearest_turn(st)));
+                let (st, which) = (self.0, self.1);
+                self.2.extend(terms.iter().filter_map(|t| match which {
+                    TwistBranch::Remembered => t.remembered(st),
+                    TwistBranch::NearestTurn => t.nearest_turn(st),
+                }));
             }
         }
-        let mut nearest = Nearest(&self.state, Vec::new());
-        self.terms.visit(&mut nearest);
-        for (slot, v) in nearest.1 {
+        buffer.clear();
+        let mut collect = Collect(&self.state, which, buffer);
+        self.terms.visit(&mut collect);
+        let values = collect.2;
+        for &(slot, v) in &values {
             self.state.twist_prev[slot] = v;
         }
+        values
     }
 
     /// Sets the load factor and the prescribed variables for continuation parameter `lambda`.

@@ -238,18 +238,22 @@ pub fn oriented_frame_of<T: Real>(r: &EdgeRef, sign: f64, along: V3<T>, theta: T
 mod tests {
     use super::*;
 
+    /// Deterministic uniform numbers in [−1, 1) (a linear congruential generator).
+    fn uniform(mut seed: u64) -> impl FnMut() -> f64 {
+        move || {
+            seed = seed
+                .wrapping_mul(6364136223846793005)
+                .wrapping_add(1442695040888963407);
+            ((seed >> 11) as f64 / (1u64 << 53) as f64) * 2.0 - 1.0
+        }
+    }
+
     /// The frame-product forms of κb's projections and of the reference twist agree with their
     /// definitions (cross product; transport then signed angle) at generic and nearly folded
     /// tangents, in both stencil orientations.
     #[test]
     fn frame_products_match_the_definitions() {
-        let mut seed = 7u64;
-        let mut rnd = move || {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            ((seed >> 11) as f64 / (1u64 << 53) as f64) * 2.0 - 1.0
-        };
+        let mut rnd = uniform(7);
         for case in 0..200 {
             let mut v = || normalize([rnd(), rnd(), rnd()]);
             let (t0r, t1r) = (v(), v());
@@ -296,13 +300,7 @@ mod tests {
     /// where a tangent is opposite the one before it.
     #[test]
     fn canonical_angles_describe_the_same_material_frame() {
-        let mut seed = 11u64;
-        let mut rnd = move || {
-            seed = seed
-                .wrapping_mul(6364136223846793005)
-                .wrapping_add(1442695040888963407);
-            ((seed >> 11) as f64 / (1u64 << 53) as f64) * 2.0 - 1.0
-        };
+        let mut rnd = uniform(11);
         let director = |u: [f64; 3], t: [f64; 3], th: f64| {
             add(scalef(u, th.cos()), scalef(cross(t, u), th.sin()))
         };

@@ -1,9 +1,9 @@
 //! Bending strain and stress at rod vertices. The strain comes from the change of the material
 //! curvatures (κ1, κ2) from the rest shape, so a rod drawn curved is unstressed at rest; the
 //! curvature density is the integrated curvature over the stencil's weight (the rest Voronoi
-//! length, end-corrected beside vertex frames), as in the bending energy. Vertices at a clamp or joint take their curvature from the half-stencils between the
-//! vertex frame and each incident edge (the largest side), so clamped ends are not reported as
-//! unstressed; only free ends are.
+//! length, end-corrected beside vertex frames), as in the bending energy. Vertices at a clamp or
+//! joint take their curvature from the half-stencils between the vertex frame and each incident
+//! edge (the largest side), so clamped ends are not reported as unstressed; only free ends are.
 
 use crate::energy::{frame_twist::FrameTwist, twist::Twist, Term};
 use crate::math::vec::{cross, dot, norm, sub};
