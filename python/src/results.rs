@@ -16,6 +16,16 @@ pub struct Results {
     solved: Solved,
 }
 
+/// A results block as a dict, or None where the results have none.
+fn optional_block<'py, T: serde::Serialize>(
+    py: Python<'py>,
+    block: Option<&T>,
+) -> PyResult<Option<Bound<'py, PyAny>>> {
+    block
+        .map(|b| crate::to_python(py, &serde_json::to_value(b).expect("serializes")))
+        .transpose()
+}
+
 impl Results {
     pub fn new(solved: Solved) -> Results {
         Results { solved }
@@ -110,46 +120,22 @@ impl Results {
     /// The shape metrics against the scene's (or the gridshell's) target, or None.
     #[getter]
     fn target<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyAny>>> {
-        match &self.solved.results.target {
-            Some(t) => Ok(Some(crate::to_python(
-                py,
-                &serde_json::to_value(t).expect("serializes"),
-            )?)),
-            None => Ok(None),
-        }
+        optional_block(py, self.solved.results.target.as_ref())
     }
     /// The eigen-analysis (`modes=K`), or None.
     #[getter]
     fn stability<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyAny>>> {
-        match &self.solved.results.stability {
-            Some(s) => Ok(Some(crate::to_python(
-                py,
-                &serde_json::to_value(s).expect("serializes"),
-            )?)),
-            None => Ok(None),
-        }
+        optional_block(py, self.solved.results.stability.as_ref())
     }
     /// The Richardson extrapolation (`extrapolate=2` or `3`), or None.
     #[getter]
     fn extrapolation<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyAny>>> {
-        match &self.solved.results.extrapolation {
-            Some(x) => Ok(Some(crate::to_python(
-                py,
-                &serde_json::to_value(x).expect("serializes"),
-            )?)),
-            None => Ok(None),
-        }
+        optional_block(py, self.solved.results.extrapolation.as_ref())
     }
     /// The generated gridshell's block (options, sizes, shape metrics), or None.
     #[getter]
     fn gridshell<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyAny>>> {
-        match &self.solved.gridshell {
-            Some(g) => Ok(Some(crate::to_python(
-                py,
-                &serde_json::to_value(g).expect("serializes"),
-            )?)),
-            None => Ok(None),
-        }
+        optional_block(py, self.solved.gridshell.as_ref())
     }
 
     /// Node positions of a rod (by name or index), m: an (n, 3) array.

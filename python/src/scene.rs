@@ -318,9 +318,9 @@ impl Scene {
         }
         rscene::validate::validate(&sc).map_err(|e| invalid(py, None, "", &e))?;
         let job = Job::Scene(Box::new(sc));
-        let outcome = solve_released(py, progress, |hook| match (&job, extrapolate) {
-            (Job::Scene(sc), Some(levels)) => run::solve_extrapolated(sc, levels, modes, hook),
-            _ => run::solve(&job, modes, hook),
+        let outcome = solve_released(py, progress, |hook| match extrapolate {
+            Some(levels) => run::solve_extrapolated(&job, levels, modes, hook),
+            None => run::solve(&job, modes, hook),
         })?;
         match outcome {
             Ok(solved) => Ok(Results::new(solved)),

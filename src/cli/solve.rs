@@ -206,15 +206,13 @@ fn solve_and_write(label: &str, sc: &Scene, source: &Source, outputs: Outputs, q
     let tracker = progress::Tracker::begin(settings.load_steps, show_progress(quiet));
     settings.progress = Some(tracker.hook());
     let mut stage_error = None;
-    let result = match &outputs.initial {
-        None if outputs.extrapolate.is_some() => {
-            let levels = outputs.extrapolate.unwrap_or(2);
-            crate::study::extrapolate::solve_levels(sc, &settings, levels).map_err(|e| match e {
+    let result = match (&outputs.initial, outputs.extrapolate) {
+        (None, Some(levels)) => crate::study::extrapolate::solve_levels(sc, &settings, levels)
+            .map_err(|e| match e {
                 job::JobError::Scene(e) => source.describe(&e),
                 job::JobError::Refused(m) => format!("--extrapolate: {m}"),
-            })
-        }
-        None => job::solve_stages(sc, &settings, |sol| {
+            }),
+        (None, None) => job::solve_stages(sc, &settings, |sol| {
             // A stage's results are written as it completes (the last with the others below).
             let name = sol.results.stage.as_ref().map_or("", |s| s.name.as_str());
             let written = outputs
@@ -233,7 +231,7 @@ fn solve_and_write(label: &str, sc: &Scene, source: &Source, outputs: Outputs, q
             }
         })
         .map_err(|e| source.describe(&e)),
-        Some(f) => match read_initial(f) {
+        (Some(f), _) => match read_initial(f) {
             Ok(rods) => job::solve_scene_from(sc, &settings, &rods).map_err(|e| match e {
                 job::JobError::Scene(e) => source.describe(&e),
                 job::JobError::Refused(m) => format!("--initial {}: {m}", f.display()),

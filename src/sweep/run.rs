@@ -58,16 +58,48 @@ pub fn solve(
     modes: Option<usize>,
     progress: Option<Progress>,
 ) -> Result<Solved, Failure> {
+    solve_levels(job, None, modes, progress)
+}
+
+/// [`solve`] of a scene at `levels` (2 or 3) subdivisions, extrapolated (`study::extrapolate`,
+/// as `rodnet solve --extrapolate --levels`); the modes are the finest equilibrium's.
+pub fn solve_extrapolated(
+    job: &Job,
+    levels: usize,
+    modes: Option<usize>,
+    progress: Option<Progress>,
+) -> Result<Solved, Failure> {
+    solve_levels(job, Some(levels), modes, progress)
+}
+
+fn solve_levels(
+    job: &Job,
+    extrapolate: Option<usize>,
+    modes: Option<usize>,
+    progress: Option<Progress>,
+) -> Result<Solved, Failure> {
     let (results, gridshell) = match job {
         Job::Scene(scene) => {
             let mut settings = pipeline::settings_of(scene);
             settings.progress = progress;
-            let mut sol = pipeline::solve_scene(scene, &settings).map_err(Failure::Scene)?;
+            let mut sol = match extrapolate {
+                None => pipeline::solve_scene(scene, &settings).map_err(Failure::Scene)?,
+                Some(levels) => crate::study::extrapolate::solve_levels(scene, &settings, levels)
+                    .map_err(|e| match e {
+                    pipeline::JobError::Scene(e) => Failure::Scene(e),
+                    pipeline::JobError::Refused(m) => Failure::Solve(m),
+                })?,
+            };
             if let (Some(k), true) = (modes, sol.results.all_finite()) {
                 pipeline::analyse_modes(&mut sol, k)
                     .map_err(|e| Failure::Solve(format!("eigen-analysis: {e}")))?;
             }
             (sol.results, None)
+        }
+        Job::Hemisphere(_) if extrapolate.is_some() => {
+            return Err(Failure::Solve(
+                "extrapolation applies to scenes, not to a generated gridshell job".into(),
+            ));
         }
         Job::Hemisphere(h) => {
             let mut run = gridshell_job::run(&h.spec, h.start_cap, progress).map_err(|e| {
@@ -97,38 +129,6 @@ pub fn solve(
         )));
     }
     Ok(Solved { results, gridshell })
-}
-
-/// Solves a scene at `levels` (2 or 3) subdivisions and extrapolates (`study::extrapolate`,
-/// as `rodnet solve --extrapolate --levels`), with the lowest `modes` eigenvalues at the finest
-/// equilibrium if asked. Failures as in [`solve`]; `levels` outside 2–3 is a scene failure of
-/// nothing but that value.
-pub fn solve_extrapolated(
-    scene: &crate::scene::Scene,
-    levels: usize,
-    modes: Option<usize>,
-    progress: Option<Progress>,
-) -> Result<Solved, Failure> {
-    let mut settings = pipeline::settings_of(scene);
-    settings.progress = progress;
-    let mut sol =
-        crate::study::extrapolate::solve_levels(scene, &settings, levels).map_err(|e| match e {
-            pipeline::JobError::Scene(e) => Failure::Scene(e),
-            pipeline::JobError::Refused(m) => Failure::Solve(m),
-        })?;
-    if let (Some(k), true) = (modes, sol.results.all_finite()) {
-        pipeline::analyse_modes(&mut sol, k)
-            .map_err(|e| Failure::Solve(format!("eigen-analysis: {e}")))?;
-    }
-    if !sol.results.all_finite() {
-        return Err(Failure::Solve(
-            "the solve produced non-finite values".into(),
-        ));
-    }
-    Ok(Solved {
-        results: sol.results,
-        gridshell: None,
-    })
 }
 
 /// The message of a caught panic.
