@@ -37,7 +37,7 @@ use crate::gridshell::chebyshev::HemisphereNet;
 use crate::math::vec::{add, normalize, rotation_between, sub};
 use crate::network::model::Model;
 use crate::network::{Network, NetworkProblem};
-use crate::solver::{self, NewtonReport, NewtonSettings};
+use crate::solver::{NewtonReport, NewtonSettings};
 
 /// Radius of the starting cap over R. Larger radii start flatter and need more iterations
 /// (see docs/gridshell.md); the equilibrium is the same.
@@ -174,22 +174,15 @@ fn cap_path(
         }
         // Edge reference frames follow the new tangents before the first assembly.
         model.commit();
-        let tolerance = if last {
-            settings.tolerance
-        } else {
-            // Only the last step is the answer; the others just start the next.
-            settings
-                .tolerance
-                .max(solver::continuation::INTERMEDIATE_TOLERANCE)
-        };
-        // An intermediate state stalled at the round-off floor starts the next step well enough.
+        // Only the last step is the answer; the others just start the next. An intermediate
+        // state stalled at the round-off floor starts the next step well enough.
         let automatic = settings.automatic_tolerance || !last;
         // The time limit holds for the whole form finding, not for each cap step.
         let left = deadline.map(|d| d.saturating_duration_since(Instant::now()).as_secs_f64());
         let step_settings = settings
             .clone()
             .load_steps(1)
-            .tolerance(tolerance)
+            .intermediate(!last)
             .time_limit(left);
         let r = problem.solve(&step_settings.automatic_tolerance(automatic));
         merge(&mut total, &r);

@@ -101,7 +101,11 @@ impl Path {
         if trivial {
             // Nothing moves along the path (a form-finding step with fixed supports and no
             // loads): the solve is the start's equilibration, to the full tolerance.
-            let lim = self.limits(s.tolerance, (s.max_iterations, s.max_iterations), false);
+            let mut lim = self.limits(s.tolerance, (s.max_iterations, s.max_iterations), false);
+            if s.intermediate {
+                lim.tolerance = s.tolerance.max(INTERMEDIATE_TOLERANCE);
+                lim.step_tolerance = Some(INTERMEDIATE_STEP);
+            }
             let outcome = st.iterate(p, s, &lim, self.steps);
             st.report.substeps = 1;
             st.report.step_iterations = vec![st.report.iterations];
@@ -279,13 +283,14 @@ impl Path {
             } else {
                 (ATTEMPT_CAP, (2 * ATTEMPT_CAP).min(remaining))
             };
-            let tolerance = if next == 1.0 {
-                s.tolerance
-            } else {
+            let intermediate = next < 1.0 || s.intermediate;
+            let tolerance = if intermediate {
                 s.tolerance.max(INTERMEDIATE_TOLERANCE)
+            } else {
+                s.tolerance
             };
             let mut lim = self.limits(tolerance, caps, !last_chance);
-            if next < 1.0 {
+            if intermediate {
                 lim.step_tolerance = Some(INTERMEDIATE_STEP);
             }
             let before = st.report.iterations;

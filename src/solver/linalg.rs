@@ -179,7 +179,7 @@ impl SparseCholesky {
             MemStack::new(&mut self.factor_mem),
             Default::default(),
         );
-        self.factored = r.is_ok() && self.l.iter().all(|v| v.is_finite());
+        self.factored = r.is_ok() && all_finite(&self.l);
         if self.factored {
             Ok(())
         } else {
@@ -211,7 +211,7 @@ impl SparseCholesky {
             MemStack::new(&mut self.ldlt_mem),
             Default::default(),
         );
-        self.ldlt_factored = r.is_ok() && self.ldlt.iter().all(|v| v.is_finite());
+        self.ldlt_factored = r.is_ok() && all_finite(&self.ldlt);
         if self.ldlt_factored {
             Ok(())
         } else {
@@ -288,6 +288,20 @@ impl SparseCholesky {
     }
 }
 
+/// Whether every value is finite, in one pass the compiler vectorizes (x·0 is NaN exactly for
+/// infinite or NaN x); a short-circuiting test costs a tenth of a factorization.
+fn all_finite(v: &[f64]) -> bool {
+    let mut acc = [0.0; 8];
+    let chunks = v.chunks_exact(8);
+    let rest = chunks.remainder();
+    for c in chunks {
+        for (a, x) in acc.iter_mut().zip(c) {
+            *a += x * 0.0;
+        }
+    }
+    acc.iter().all(|a| !a.is_nan()) && rest.iter().all(|x| x.is_finite())
+}
+
 /// The values of the upper triangle copied into the permuted pattern's order (`of_upper`).
 fn permute_values(values: &[f64], of_upper: &[usize], out: &mut [f64]) {
     for (&v, &p) in values.iter().zip(of_upper) {
@@ -337,5 +351,21 @@ mod tests {
         s.values.iter_mut().for_each(|v| *v = -*v);
         assert!(s.factor(0.0).is_err());
         assert!(s.factor(4.5).is_ok());
+    }
+
+    #[test]
+    fn all_finite_finds_a_non_finite_value_anywhere() {
+        for n in [0, 1, 7, 8, 9, 23] {
+            let mut v: Vec<f64> = (0..n).map(|i| (i as f64 - 4.0) * 1e300).collect();
+            assert!(all_finite(&v));
+            for i in 0..n {
+                for bad in [f64::NAN, f64::INFINITY, f64::NEG_INFINITY] {
+                    let keep = v[i];
+                    v[i] = bad;
+                    assert!(!all_finite(&v), "n {n}, index {i}, {bad}");
+                    v[i] = keep;
+                }
+            }
+        }
     }
 }

@@ -28,6 +28,10 @@ pub struct NewtonSettings {
     pub equilibrate_only: bool,
     /// How the path from λ = 0 to 1 is followed.
     pub continuation: Continuation,
+    /// The solve's state only starts another solve (a form-finding path's earlier steps): it
+    /// ends, like the path's own intermediate sub-steps, at a loose tolerance or once a full,
+    /// unregularized Newton step as small as the next start needs has been taken.
+    pub intermediate: bool,
 }
 
 /// How the path from λ = 0 to 1 is followed.
@@ -59,6 +63,7 @@ impl Default for NewtonSettings {
             time_limit: None,
             equilibrate_only: false,
             continuation: Continuation::Load,
+            intermediate: false,
         }
     }
 }
@@ -74,6 +79,7 @@ impl std::fmt::Debug for NewtonSettings {
             .field("ordering", &self.ordering)
             .field("time_limit", &self.time_limit)
             .field("continuation", &self.continuation)
+            .field("intermediate", &self.intermediate)
             .finish()
     }
 }
@@ -110,6 +116,10 @@ impl NewtonSettings {
     }
     pub fn equilibrate_only(mut self, on: bool) -> Self {
         self.equilibrate_only = on;
+        self
+    }
+    pub fn intermediate(mut self, on: bool) -> Self {
+        self.intermediate = on;
         self
     }
     pub fn load_steps(mut self, n: usize) -> Self {

@@ -226,6 +226,13 @@ const DEFAULT_SCHEME: Scheme = Scheme {
     levels: 6,
 };
 
+/// The scheme of [`HemisphereNet::points`]: macro steps of at most `step` between consecutive
+/// points of one curve, each with `levels` extrapolation levels.
+const MARCH_SCHEME: Scheme = Scheme {
+    step: 0.1,
+    levels: 5,
+};
+
 /// The net curve `τ = const` (unit sphere), with its states on the canonical grid cached.
 struct NetCurve<'a> {
     profile: &'a AngleProfile,
@@ -289,6 +296,14 @@ impl<'a> NetCurve<'a> {
             std::mem::swap(&mut prev, &mut cur);
         }
         prev[levels - 1]
+    }
+
+    /// The state at `to` from the state `y` at `from`, in equal macro steps of at most the
+    /// scheme's step.
+    fn march(&self, from: f64, y: &State, to: f64) -> State {
+        let steps = ((to - from) / self.scheme.step).ceil().max(0.0) as usize;
+        let h = (to - from) / steps.max(1) as f64;
+        (0..steps).fold(*y, |y, k| self.advance(from + k as f64 * h, &y, h))
     }
 
     fn node(&mut self, m: usize) -> State {
@@ -547,8 +562,12 @@ impl HemisphereNet {
             .collect()
     }
 
-    /// `point(u, v)` for every (u, v) of `uv`, bit for bit, integrating each net curve once for
-    /// all the points on it instead of once per point (a cap's nodes share their rods' curves).
+    /// `point(u, v)` for every (u, v) of `uv`, to round-off (not bit for bit: 1.8e-14 R apart
+    /// on |u|, |v| ≤ 1.6 R in the tests). Each net curve is integrated once, from one of its
+    /// points to the next in short steps (`MARCH_SCHEME`), instead of from its canonical grid
+    /// to every point: a cap's nodes lie on few curves at short spacings, and the n = 12,
+    /// K = 8 footprint's nodes take 4 times less. Every point is still taken on the curve of
+    /// its smaller |parameter|, so the net's u↔v symmetry stays exact.
     pub fn points(&self, uv: &[[f64; 2]]) -> Vec<[f64; 3]> {
         let mut out = vec![[f64::NAN; 3]; uv.len()];
         // Points by the curve `point` integrates along (the smaller |parameter|, by its bits),
@@ -566,9 +585,11 @@ impl HemisphereNet {
         }
         for (near, mut on) in curves {
             on.sort_by(|x, y| x.0.total_cmp(&y.0));
-            let mut curve = NetCurve::new(&self.profile, f64::from_bits(near), self.scheme);
+            let curve = NetCurve::new(&self.profile, f64::from_bits(near), MARCH_SCHEME);
+            let (mut at, mut y) = (0.0, curve.nodes[0]);
             for (far, i) in on {
-                let y = curve.at(far);
+                y = curve.march(at, &y, far);
+                at = far;
                 let [u, v] = uv[i];
                 let (sigma, tau) = (u / self.radius, v / self.radius);
                 let (a, b) = (sigma.abs(), tau.abs());

@@ -175,7 +175,7 @@ fn symmetries_are_exact() {
 }
 
 #[test]
-fn crossings_rod_points_and_points_are_the_point_function() {
+fn crossings_rod_points_and_points_are_the_point_function_to_round_off() {
     let net = HemisphereNet::new(1.0, 12);
     for i in 0..12 {
         for j in 0..12 {
@@ -189,13 +189,24 @@ fn crossings_rod_points_and_points_are_the_point_function() {
         .flat_map(|i| (-20..=20).map(move |j| [i as f64 * 0.08, j as f64 * 0.08]))
         .chain([[f64::NAN, 0.1], [1e12, 0.2], [0.3, 0.3]])
         .collect();
-    for (p, &[u, v]) in net.points(&uv).iter().zip(&uv) {
+    let mut worst: f64 = 0.0;
+    let points = net.points(&uv);
+    for (k, (p, &[u, v])) in points.iter().zip(&uv).enumerate() {
         let q = net.point(u, v);
-        assert!(
-            p == &q || (p[0].is_nan() && q[0].is_nan()),
-            "{u} {v}: {p:?} {q:?}"
-        );
+        if q[0].is_nan() {
+            assert!(p[0].is_nan(), "{u} {v}: {p:?}");
+            continue;
+        }
+        worst = worst.max(norm([p[0] - q[0], p[1] - q[1], p[2] - q[2]]));
+        // The u↔v symmetry is exact, not within integration error: (v, u) is the point
+        // (j, i) of the grid when (u, v) is (i, j).
+        if k < 41 * 41 {
+            let (i, j) = (k / 41, k % 41);
+            assert_eq!(mirror_uv(*p), points[41 * j + i], "{u} {v}");
+        }
     }
+    eprintln!("points against point: {worst:.2e}");
+    assert!(worst < 1e-13, "points against point: {worst:.2e}");
     let us: Vec<f64> = (-40..=40).map(|q| q as f64 * 0.04).collect();
     for k in [0, 3, 6, 11] {
         let pts = net.rod_points(k, &us);
