@@ -117,6 +117,21 @@ fn hemisphere_factorization(bencher: divan::Bencher, nd: bool) {
     bencher.bench_local(|| chol.factor(shift).is_ok());
 }
 
+/// One solve with the factor (forward and back substitution): the supernodal factor's own
+/// loops (`solver/supernodal_solve.rs`).
+#[divan::bench(args = [false, true])]
+fn hemisphere_solve(bencher: divan::Bencher, nd: bool) {
+    let (m, _, mut chol) = assembled(nd);
+    chol.factor(1e-10 * chol.diagonal_scale()).unwrap();
+    let b: Vec<f64> = (0..m.n_free).map(|i| (i as f64 * 0.37).sin()).collect();
+    let mut x = b.clone();
+    bencher.bench_local(|| {
+        x.copy_from_slice(&b);
+        chol.solve(&mut x);
+        x[0]
+    });
+}
+
 /// Assembly, factorization, solve, length projection, one trial energy and the update.
 #[divan::bench]
 fn hemisphere_newton_iteration(bencher: divan::Bencher) {

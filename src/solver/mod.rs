@@ -14,6 +14,7 @@ pub mod saddle;
 pub mod settings;
 pub mod spectrum;
 mod step;
+mod supernodal_solve;
 pub mod symbolic;
 
 pub use continuation::solve;
