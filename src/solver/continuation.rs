@@ -100,7 +100,8 @@ impl Path {
         p.set_continuation(if trivial { 1.0 } else { 0.0 });
         if trivial {
             // Nothing moves along the path (a form-finding step with fixed supports and no
-            // loads): the solve is the start's equilibration, to the full tolerance.
+            // loads): the solve is the start's equilibration, to the full tolerance unless its
+            // state only starts another solve.
             let mut lim = self.limits(s.tolerance, (s.max_iterations, s.max_iterations), false);
             if s.intermediate {
                 lim.tolerance = s.tolerance.max(INTERMEDIATE_TOLERANCE);

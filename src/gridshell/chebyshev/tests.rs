@@ -205,7 +205,6 @@ fn crossings_rod_points_and_points_are_the_point_function_to_round_off() {
             assert_eq!(mirror_uv(*p), points[41 * j + i], "{u} {v}");
         }
     }
-    eprintln!("points against point: {worst:.2e}");
     assert!(worst < 1e-13, "points against point: {worst:.2e}");
     let us: Vec<f64> = (-40..=40).map(|q| q as f64 * 0.04).collect();
     for k in [0, 3, 6, 11] {
