@@ -177,8 +177,17 @@ impl<T: Real> FrameDots<T> {
     #[inline(always)]
     pub fn reference_twist(&self) -> T {
         let w = (self.tt + 1.0).recip();
-        let cos = self.tt * self.u0u1 - self.t1u0 * self.t0u1 - self.t1v0 * self.t0v1 * w;
-        let sin = self.t1u0 * self.t0v1 - self.tt * self.u0v1 - self.t1v0 * self.t0u1 * w;
+        let p = self.t1v0 * w;
+        let cos = T::dot3(
+            [self.tt, self.t1u0, p],
+            [self.u0u1, self.t0u1, self.t0v1],
+            [1.0, -1.0, -1.0],
+        );
+        let sin = T::dot3(
+            [self.t1u0, self.tt, p],
+            [self.t0v1, self.u0v1, self.t0u1],
+            [1.0, -1.0, -1.0],
+        );
         sin.atan2(cos)
     }
 }
