@@ -605,3 +605,31 @@ fn a_fine_slender_cantilever_is_stable_not_neutral() {
         assert!(sol.report.stable, "{n}");
     }
 }
+
+/// A solve whose state only starts another (`NewtonSettings::intermediate`, the form-finding
+/// caps before the last) ends like the path's intermediate sub-steps: sooner (no iteration to
+/// the round-off floor, no final stability check), converged, near the equilibrium that the
+/// full solve reaches (the tip within 1e-4 of the 1 m rod).
+#[test]
+fn an_intermediate_solve_ends_sooner_near_the_equilibrium() {
+    for steps in [1, 3] {
+        let s = cantilever(40, &format!("solver: Solver(load_steps: {steps})"));
+        let full = solve(&s);
+        let loose = solve_scene(&s, &settings_of(&s).intermediate(true)).expect("valid scene");
+        assert!(full.results.converged && loose.results.converged);
+        let (l, f) = (&loose.report, &full.report);
+        assert!(
+            l.iterations <= f.iterations && l.factorizations < f.factorizations,
+            "{steps} load steps: {} against {} iterations, {} against {} factorizations",
+            l.iterations,
+            f.iterations,
+            l.factorizations,
+            f.factorizations
+        );
+        let ([x, y, _], [xf, yf, _]) = (tip(&loose), tip(&full));
+        assert!(
+            (x - xf).hypot(y - yf) < 1e-4,
+            "{steps} load steps: tip {x} {y} against {xf} {yf}"
+        );
+    }
+}
