@@ -19,15 +19,22 @@ fn json(p: &Path) -> serde_json::Value {
 }
 
 fn solve(scene: &Path, out: &Path, initial: Option<&Path>) -> std::process::Output {
-    let mut c = rodnet();
-    c.arg("solve")
+    match initial {
+        Some(i) => solve_with(scene, out, &["--initial".as_ref(), i.as_os_str()]),
+        None => solve_with(scene, out, &[]),
+    }
+}
+
+/// `rodnet solve SCENE --quiet --json OUT` with further arguments.
+fn solve_with(scene: &Path, out: &Path, extra: &[&std::ffi::OsStr]) -> std::process::Output {
+    rodnet()
+        .arg("solve")
         .arg(scene)
         .args(["--quiet", "--json"])
-        .arg(out);
-    if let Some(i) = initial {
-        c.arg("--initial").arg(i);
-    }
-    c.output().unwrap()
+        .arg(out)
+        .args(extra)
+        .output()
+        .unwrap()
 }
 
 fn max_point_gap(a: &serde_json::Value, b: &serde_json::Value) -> f64 {
@@ -347,17 +354,7 @@ fn a_rod_twisted_by_ten_turns_restarts_with_its_turns() {
     );
     assert_eq!(jb["iterations"], 0);
     let x = d.join("x.json");
-    let out = rodnet()
-        .args([
-            "solve",
-            "networks/extreme/twist_10_turns.ron",
-            "--quiet",
-            "--extrapolate",
-            "--json",
-        ])
-        .arg(&x)
-        .output()
-        .unwrap();
+    let out = solve_with(scene, &x, &["--extrapolate".as_ref()]);
     assert!(
         out.status.success(),
         "{}",

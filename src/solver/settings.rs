@@ -78,6 +78,7 @@ impl std::fmt::Debug for NewtonSettings {
             .field("progress", &self.progress.as_ref().map(|_| "closure"))
             .field("ordering", &self.ordering)
             .field("time_limit", &self.time_limit)
+            .field("equilibrate_only", &self.equilibrate_only)
             .field("continuation", &self.continuation)
             .field("intermediate", &self.intermediate)
             .finish()
