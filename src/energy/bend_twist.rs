@@ -15,6 +15,7 @@ use super::{Category, Term};
 use crate::math::dual::{compose, separable_dot};
 use crate::math::vec::dot;
 use crate::math::{Real, HD};
+use crate::rod::committed_frames::CommittedPair;
 use crate::rod::frames::{oriented_reference_frame, FrameDots, RefFrame};
 use crate::variables::State;
 
@@ -37,6 +38,36 @@ impl BendTwist {
         oriented_reference_frame(&st.edges[b.edges[j]], b.signs[j], along)
     }
 
+    /// The energy's derivatives in (six edge coordinates, θ⁰, θ¹) from the frames' products
+    /// differentiated in those coordinates: the energy as a function of (κb's projections,
+    /// reference twist, θ⁰, θ¹) is differentiated by hand and chained with them.
+    #[inline(always)]
+    fn composed(&self, st: &State, dots: &FrameDots<HD<6>>, theta: [f64; 2]) -> HD<8> {
+        let p = dots.binormal_projections();
+        let r = self.twist.reference_twist_of(st, dots);
+        let o = [p[0].v, p[1].v, p[2].v, p[3].v, r.v, theta[0], theta[1]];
+        let (b, t) = (&self.bend, &self.twist);
+        let mut energy = HD::<7>::cst(0.0);
+        for j in 0..2 {
+            let idx = [2 * j, 2 * j + 1, 5 + j];
+            let at = idx.map(|i| o[i]);
+            add_rotated_bend(
+                &mut energy,
+                idx,
+                at,
+                b.signs[j],
+                b.rest[j],
+                b.ei[j],
+                0.25 / b.voronoi,
+            );
+        }
+        let coef = [1.0, -t.signs[0], t.signs[1]];
+        let w = 0.5 * t.gj / t.voronoi;
+        add_linear_square(&mut energy, [4, 5, 6], [o[4], o[5], o[6]], coef, t.rest, w);
+        let inner = [p[0], p[1], p[2], p[3], r];
+        compose::<6, 5, 7, 8>(&inner, &energy)
+    }
+
     /// (bending, twisting) energy at the local variables `x`.
     pub fn energies<T: Real>(&self, st: &State, x: &[T; 11]) -> [T; 2] {
         let y = super::reduce(&STENCIL_MAP, x);
@@ -57,39 +88,23 @@ impl Term<11> for BendTwist {
     fn edge(&self) -> Option<usize> {
         Some(self.bend.edges[0])
     }
+    /// At a committed state (where Newton assembles) the frames' products and their
+    /// derivatives come in closed form ([`CommittedPair`]); elsewhere the frames are
+    /// differentiated by hyper-dual arithmetic.
     fn derivatives(&self, st: &State, x: &[f64; 11]) -> HD<11> {
         let y = super::reduce(&STENCIL_MAP, x);
-        let frame = |j: usize| {
-            self.frame(
-                st,
-                j,
-                HD::<3>::vars(&[y[3 * j], y[3 * j + 1], y[3 * j + 2]]),
-            )
+        let b = &self.bend;
+        let refs = [&st.edges[b.edges[0]], &st.edges[b.edges[1]]];
+        let along = [[y[0], y[1], y[2]], [y[3], y[4], y[5]]];
+        let theta = [y[6], y[7]];
+        let outer = match CommittedPair::new(refs, b.signs, along) {
+            Some(pair) => pair.to_edges(&self.composed(st, &pair.dots(), theta)),
+            None => {
+                let frame = |j: usize| self.frame(st, j, HD::<3>::vars(&along[j]));
+                let dots = FrameDots::<HD<6>>::new(&frame(0), &frame(1), separable_dot::<3, 3, 6>);
+                self.composed(st, &dots, theta)
+            }
         };
-        let dots = FrameDots::<HD<6>>::new(&frame(0), &frame(1), separable_dot::<3, 3, 6>);
-        let p = dots.binormal_projections();
-        let r = self.twist.reference_twist_of(st, &dots);
-        // The energy in (projections, reference twist, θ⁰, θ¹), derivatives by hand.
-        let o = [p[0].v, p[1].v, p[2].v, p[3].v, r.v, y[6], y[7]];
-        let (b, t) = (&self.bend, &self.twist);
-        let mut energy = HD::<7>::cst(0.0);
-        for j in 0..2 {
-            let idx = [2 * j, 2 * j + 1, 5 + j];
-            let at = idx.map(|i| o[i]);
-            add_rotated_bend(
-                &mut energy,
-                idx,
-                at,
-                b.signs[j],
-                b.rest[j],
-                b.ei[j],
-                0.25 / b.voronoi,
-            );
-        }
-        let coef = [1.0, -t.signs[0], t.signs[1]];
-        let w = 0.5 * t.gj / t.voronoi;
-        add_linear_square(&mut energy, [4, 5, 6], [o[4], o[5], o[6]], coef, t.rest, w);
-        let inner = [p[0], p[1], p[2], p[3], r];
-        super::expand(&STENCIL_MAP, &compose::<6, 5, 7, 8>(&inner, &energy))
+        super::expand(&STENCIL_MAP, &outer)
     }
 }
