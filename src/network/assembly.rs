@@ -58,6 +58,34 @@ impl Model {
         p.1
     }
 
+    /// A hash of everything [`Model::hessian_pattern`] depends on: the free map and every
+    /// term's variables, in visiting order. 128 bits (two independent multiplicative hashes),
+    /// so that two different patterns agree only by an accident of probability 2⁻¹²⁸; it costs
+    /// a small fraction of making the pattern.
+    pub fn pattern_fingerprint(&self) -> [u64; 2] {
+        struct Hash([u64; 2]);
+        impl Hash {
+            fn mix(&mut self, w: u64) {
+                let [a, b] = &mut self.0;
+                *a = (a.rotate_left(5) ^ w).wrapping_mul(0x51_7c_c1_b7_27_22_0a_95);
+                *b = (b.rotate_left(23) ^ w).wrapping_mul(0x9e_37_79_b9_7f_4a_7c_15);
+            }
+        }
+        impl TermVisitor for Hash {
+            fn visit<const N: usize, E: Term<N>>(&mut self, _: usize, terms: &[E]) {
+                self.mix(terms.len() as u64);
+                for t in terms {
+                    t.vars().iter().for_each(|&v| self.mix(v as u64));
+                }
+            }
+        }
+        let mut h = Hash([1, 2]);
+        h.mix(self.n_free as u64);
+        self.free.iter().for_each(|&f| h.mix(u64::from(f)));
+        self.terms.visit(&mut h);
+        h.0
+    }
+
     /// The slot map from, for each pair of [`Model::hessian_pattern`], its index in the Hessian
     /// values.
     pub fn hessian_slots(&self, slot_of_pair: &[usize]) -> HessianSlots {

@@ -6,7 +6,8 @@ use crate::network::assembly::{Assembly, HessianOut, HessianSlots};
 use crate::network::model::Model;
 use crate::network::projection::Projector;
 use crate::network::{Network, RodInfo};
-use crate::solver::{NewtonProblem, NewtonReport, NewtonSettings};
+use crate::solver::linalg::SparseCholesky;
+use crate::solver::{NewtonProblem, NewtonReport, NewtonSettings, Ordering};
 use crate::variables::{State, VarKind};
 
 /// Most Gauss–Newton passes of the length projection after a secant prediction on a buckling
@@ -41,6 +42,15 @@ pub struct NetworkProblem<'m> {
     /// The load factors at continuation parameters 0 and 1 (default 0 and 1): a solve then
     /// goes from one load factor to another (`network/stability.rs` follows a path beyond 1).
     load_range: (f64, f64),
+    /// The factorization object of the last solve, for the next one while the model's Hessian
+    /// pattern (its fingerprint) and the ordering asked for stay the same.
+    kept: Option<Kept>,
+}
+
+struct Kept {
+    fingerprint: [u64; 2],
+    ordering: Ordering,
+    chol: SparseCholesky,
 }
 
 impl<'m> NetworkProblem<'m> {
@@ -56,6 +66,7 @@ impl<'m> NetworkProblem<'m> {
             rods: &[],
             gauge_node: None,
             load_range: (0.0, 1.0),
+            kept: None,
         }
     }
 
@@ -83,8 +94,21 @@ impl<'m> NetworkProblem<'m> {
     }
 
     /// Solves for an equilibrium with the solver's Newton method.
+    /// Solves from the current state. Successive solves of one problem (form finding's cap
+    /// steps, `buckle_toward`'s two solves) share the Hessian's pattern analysis, slots and factor
+    /// storage while the model's pattern does not change.
     pub fn solve(&mut self, settings: &NewtonSettings) -> NewtonReport {
-        crate::solver::solve(self, settings)
+        let fingerprint = self.model.pattern_fingerprint();
+        let kept = self.kept.take().and_then(|k| {
+            (k.fingerprint == fingerprint && k.ordering == settings.ordering).then_some(k.chol)
+        });
+        let (report, chol) = crate::solver::solve_with(self, settings, kept);
+        self.kept = Some(Kept {
+            fingerprint,
+            ordering: settings.ordering,
+            chol,
+        });
+        report
     }
 
     /// Evaluates `f` at the current state displaced by `alpha · step`, then restores the state

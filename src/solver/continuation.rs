@@ -3,6 +3,7 @@
 
 use std::time::{Duration, Instant};
 
+use super::linalg::SparseCholesky;
 use super::newton::{Limits, Newton, Outcome};
 use super::ordering::factorization;
 use super::problem::NewtonProblem;
@@ -30,14 +31,33 @@ pub const INTERMEDIATE_TOLERANCE: f64 = 1e-6;
 const INTERMEDIATE_STEP: f64 = 1e-2;
 
 pub fn solve<P: NewtonProblem>(p: &mut P, s: &NewtonSettings) -> NewtonReport {
+    solve_with(p, s, None).0
+}
+
+/// [`solve`], starting from the factorization object of an earlier solve of the same problem
+/// (`kept`) when its Hessian pattern has not changed since, so that its pattern, slots and
+/// factor storage are not made again (form finding's cap steps: one per step, docs/performance.md).
+/// The caller vouches that the pattern and the ordering asked for are unchanged; `p`'s Hessian
+/// slots are then still those set for it. Returns the factorization object for the next solve.
+pub fn solve_with<P: NewtonProblem>(
+    p: &mut P,
+    s: &NewtonSettings,
+    kept: Option<SparseCholesky>,
+) -> (NewtonReport, SparseCholesky) {
     let t0 = Instant::now();
     let deadline = s
         .time_limit
         .map(|t| t0 + Duration::from_secs_f64(t.clamp(0.0, 1e9)));
     let n = p.num_free();
-    let pairs = p.hessian_pattern();
-    let (chol, slots) = factorization(p, n, &pairs, s.ordering);
-    p.set_hessian_slots(&slots);
+    let chol = match kept {
+        Some(chol) => chol,
+        None => {
+            let pairs = p.hessian_pattern();
+            let (chol, slots) = factorization(p, n, &pairs, s.ordering);
+            p.set_hessian_slots(&slots);
+            chol
+        }
+    };
     // Only a problem with constraints builds a QP; without, every step is the Cholesky solve.
     let m = p.num_constraints();
     let qp = (m > 0).then(|| StepQp::new(n, m, p.constraint_pattern()));
@@ -71,7 +91,7 @@ pub fn solve<P: NewtonProblem>(p: &mut P, s: &NewtonSettings) -> NewtonReport {
             qp_seconds: qp.seconds,
         });
     }
-    st.report
+    (std::mem::take(&mut st.report), st.chol)
 }
 
 struct Path {

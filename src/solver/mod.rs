@@ -17,7 +17,7 @@ mod step;
 mod supernodal_solve;
 pub mod symbolic;
 
-pub use continuation::solve;
+pub use continuation::{solve, solve_with};
 pub use ordering::Ordering;
 pub use problem::NewtonProblem;
 pub use settings::{
