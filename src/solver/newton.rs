@@ -27,6 +27,13 @@ use super::step::repair_lengths;
 /// Relative residual below which a full Newton step on a positive definite Hessian may be
 /// accepted for reducing the residual when the Armijo test cannot resolve the energy change.
 const TRUSTED_RESIDUAL: f64 = 1e-4;
+/// A full, unshifted Newton step at most this large in the unknowns' scales (edge lengths,
+/// radians) moved nothing that matters: below the round-off floor, Newton stops after it instead
+/// of taking one more step to see round-off stall the residual. Quadratic convergence makes the
+/// next step of the order of its square; a soft mode's correction, which the residual below the
+/// floor cannot see, is a step of its own size (the slender cantilever's last one moved its tip
+/// by 1e-9 of its length, thousands of edge lengths times this).
+const NEGLIGIBLE_STEP: f64 = 1e-10;
 /// Relative residual below which the round-off floor is measured (once per `iterate`): above
 /// it, no floor of a sane problem matters, and measuring costs two gradient evaluations.
 const FLOOR_CHECK: f64 = 1e-2;
@@ -142,6 +149,8 @@ impl Newton {
         let mut damped = 0;
         let mut indefinite = 0;
         let mut last_res = f64::INFINITY;
+        // Scaled size of the last step if it was a full, unshifted Newton step.
+        let mut last_step = f64::INFINITY;
         let mut last_energy = f64::INFINITY;
         let mut prev_energy = f64::INFINITY;
         let mut floor: Option<f64> = None;
@@ -176,8 +185,9 @@ impl Newton {
             }
             let floor = floor.unwrap_or(0.0);
             // The floor is measured with one pattern of rounding errors: below it, keep
-            // iterating while Newton still halves the residual, and stop when round-off stalls it.
-            let stalled = res >= 0.5 * last_res;
+            // iterating while Newton still halves the residual, and stop when round-off stalls it
+            // or the last full Newton step moved nothing (`NEGLIGIBLE_STEP`).
+            let stalled = res >= 0.5 * last_res || last_step <= NEGLIGIBLE_STEP;
             last_res = res;
             let done = |r: f64| {
                 if r < lim.tolerance {
@@ -270,9 +280,13 @@ impl Newton {
             last_energy = e0;
             let curves = self.corrections(p, shift);
             let mut small_step = false;
+            last_step = f64::INFINITY;
             match self.search(p, e0, shift, res, curves) {
                 Some(alpha) => {
                     damped = if alpha < 0.5 { damped + 1 } else { 0 };
+                    if alpha == 1.0 && shift == 0.0 && qp_shift.is_none() {
+                        last_step = self.scaled_step();
+                    }
                     small_step = alpha == 1.0
                         && it > 0
                         && shift == 0.0
