@@ -59,9 +59,10 @@ impl Model {
     }
 
     /// A hash of everything [`Model::hessian_pattern`] depends on: the free map and every
-    /// term's variables, in visiting order. 128 bits (two independent multiplicative hashes),
-    /// so that two different patterns agree only by an accident of probability 2⁻¹²⁸; it costs
-    /// a small fraction of making the pattern.
+    /// term's variables, in visiting order. Two 64-bit multiplicative hashes with different
+    /// constants and rotations, so that two different patterns are taken for the same only by
+    /// a collision in both; it costs a small fraction of making the pattern (and no memory,
+    /// where keeping the pattern to compare would cost 16 bytes per Hessian entry).
     pub fn pattern_fingerprint(&self) -> [u64; 2] {
         struct Hash([u64; 2]);
         impl Hash {

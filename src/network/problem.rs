@@ -93,8 +93,8 @@ impl<'m> NetworkProblem<'m> {
         self.load_range = (from, to);
     }
 
-    /// Solves for an equilibrium with the solver's Newton method.
-    /// Solves from the current state. Successive solves of one problem (form finding's cap
+    /// Solves for an equilibrium from the current state with the solver's Newton method.
+    /// Successive solves of one problem (form finding's cap
     /// steps, `buckle_toward`'s two solves) share the Hessian's pattern analysis, slots and factor
     /// storage while the model's pattern does not change.
     pub fn solve(&mut self, settings: &NewtonSettings) -> NewtonReport {

@@ -135,13 +135,13 @@ impl CommittedPair {
             let s = self.lengths[j].recip();
             self.frames[j].map(|row| row.map(|x| x * s))
         });
-        // Column c of Bᵀ (as a function of the row index of the output).
+        // The map of the edge that coordinate i (< 6) belongs to.
         let block = |i: usize| &b[i / 3];
         let h = r.hessian();
         let mut out = HD::<K>::cst(r.v);
         // First H·B on the columns of the edge coordinates, then Bᵀ on the rows.
         let mut hb = h;
-        for row in hb.iter_mut().take(K) {
+        for row in hb.iter_mut() {
             let old = *row;
             for j in 0..6 {
                 let (bj, base) = (block(j), 3 * (j / 3));
