@@ -288,18 +288,24 @@ fn rod_reference_twist(c: &Case<BendTwist>) -> f64 {
         .reference_twist::<f64>(&c.st, &Twist::reduced(&c.x))
 }
 
-fn rod_cases() -> Vec<Case<BendTwist>> {
-    let mut rng = Rng::new(18);
+/// The rod stencils (every turning angle and wrap, all four orientations), each passed
+/// through `prepare` after it is made (before its reference twist is set near a wrap).
+fn rod_cases_with(seed: u64, prepare: impl Fn(&mut Case<BendTwist>)) -> Vec<Case<BendTwist>> {
+    let mut rng = Rng::new(seed);
     let mut out = Vec::new();
     let signs = [[1.0, 1.0], [-1.0, 1.0], [1.0, -1.0], [-1.0, -1.0]];
     for (phi, what) in ANGLES {
         for s in signs {
-            out.push(rod_case(&mut rng, phi, s, what));
+            let mut c = rod_case(&mut rng, phi, s, what);
+            prepare(&mut c);
+            out.push(c);
         }
     }
     for (target, what) in WRAPS {
         for s in signs {
             let mut c = rod_case(&mut rng, 0.9, s, what);
+            prepare(&mut c);
+            // Turning a director about its own tangent keeps a committed edge committed.
             set_reference_twist(&mut c, target, rod_reference_twist, |c, beta| {
                 let r = &mut c.st.edges[1];
                 r.u = rotate_axis(r.t, beta, r.u);
@@ -308,6 +314,10 @@ fn rod_cases() -> Vec<Case<BendTwist>> {
         }
     }
     out
+}
+
+fn rod_cases() -> Vec<Case<BendTwist>> {
+    rod_cases_with(18, |_| {})
 }
 
 /// Moves the case's edge reference frames onto its edges, as `Model::commit` does after an
@@ -326,31 +336,10 @@ fn commit(c: &mut Case<BendTwist>) {
 
 /// The rod cases at committed reference frames.
 fn committed_rod_cases() -> Vec<Case<BendTwist>> {
-    let mut rng = Rng::new(19);
-    let mut out = Vec::new();
-    let signs = [[1.0, 1.0], [-1.0, 1.0], [1.0, -1.0], [-1.0, -1.0]];
-    for (phi, what) in ANGLES {
-        for s in signs {
-            let mut c = rod_case(&mut rng, phi, s, what);
-            commit(&mut c);
-            c.what += ", committed";
-            out.push(c);
-        }
-    }
-    for (target, what) in WRAPS {
-        for s in signs {
-            let mut c = rod_case(&mut rng, 0.9, s, what);
-            commit(&mut c);
-            // Turning a director about its own tangent keeps the edge committed.
-            set_reference_twist(&mut c, target, rod_reference_twist, |c, beta| {
-                let r = &mut c.st.edges[1];
-                r.u = rotate_axis(r.t, beta, r.u);
-            });
-            c.what += ", committed";
-            out.push(c);
-        }
-    }
-    out
+    rod_cases_with(19, |c| {
+        commit(c);
+        c.what += ", committed";
+    })
 }
 
 fn max_abs<'a>(v: impl IntoIterator<Item = &'a f64>) -> f64 {

@@ -534,6 +534,18 @@ impl<const N: usize> Div for D1<N> {
 mod tests {
     use super::*;
 
+    /// Value, gradient and Hessian of `a` within `tol` = (value, gradient, Hessian) of `b`'s.
+    fn assert_close<const N: usize>(a: &HD<N>, b: &HD<N>, tol: [f64; 3]) {
+        assert!((a.v - b.v).abs() < tol[0], "value {} vs {}", a.v, b.v);
+        let (ha, hb) = (a.hessian(), b.hessian());
+        for i in 0..N {
+            assert!((a.g[i] - b.g[i]).abs() < tol[1], "g{i}");
+            for j in 0..N {
+                assert!((ha[i][j] - hb[i][j]).abs() < tol[2], "h{i}{j}");
+            }
+        }
+    }
+
     fn f<T: Real>(x: T, y: T) -> T {
         (x * y).sin() + (x * x + y * y + 1.0).sqrt() / (y + 3.0) + y.atan2(x) * x.cos()
     }
@@ -584,14 +596,7 @@ mod tests {
         let o = HD::<4>::vars(&[a[0].v, a[1].v, vals[3], vals[4]]);
         let outer4 = o[0] * o[1] * o[2] + (o[1] * o[3]).cos();
         let r: HD<5> = compose::<3, 2, 4, 5>(&a, &outer4);
-        assert!((r.v - direct.v).abs() < 1e-14);
-        let (hr, hd) = (r.hessian(), direct.hessian());
-        for i in 0..5 {
-            assert!((r.g[i] - direct.g[i]).abs() < 1e-13, "g{i}");
-            for j in 0..5 {
-                assert!((hr[i][j] - hd[i][j]).abs() < 1e-12, "h{i}{j}");
-            }
-        }
+        assert_close(&r, &direct, [1e-14, 1e-13, 1e-12]);
     }
 
     #[test]
@@ -602,13 +607,6 @@ mod tests {
         let s = [1.0, -1.0, 0.5];
         let fused = HD::dot3(a, b, s);
         let plain = a[0] * b[0] * s[0] + a[1] * b[1] * s[1] + a[2] * b[2] * s[2];
-        assert!((fused.v - plain.v).abs() < 1e-15);
-        let (hf, hp) = (fused.hessian(), plain.hessian());
-        for i in 0..4 {
-            assert!((fused.g[i] - plain.g[i]).abs() < 1e-14, "g{i}");
-            for j in 0..4 {
-                assert!((hf[i][j] - hp[i][j]).abs() < 1e-14, "h{i}{j}");
-            }
-        }
+        assert_close(&fused, &plain, [1e-15, 1e-14, 1e-14]);
     }
 }
