@@ -28,8 +28,10 @@ use super::step::repair_lengths;
 /// accepted for reducing the residual when the Armijo test cannot resolve the energy change.
 const TRUSTED_RESIDUAL: f64 = 1e-4;
 /// A full, unshifted Newton step at most this large in the unknowns' scales (edge lengths,
-/// radians) moved nothing that matters: below the round-off floor, Newton stops after it instead
-/// of taking one more step to see round-off stall the residual. Quadratic convergence makes the
+/// radians) moves nothing that matters: below the round-off floor, Newton takes it without a
+/// line search and stops instead of assembling once more to see round-off stall the residual
+/// (and after such a step taken above the floor, it stops at the next iterate below the floor).
+/// Quadratic convergence makes the
 /// next step of the order of its square; a soft mode's correction, which the residual below the
 /// floor cannot see, is a step of its own size (the slender cantilever's last one moved its tip
 /// by 1e-9 of its length, thousands of edge lengths times this).
@@ -203,11 +205,7 @@ impl Newton {
                     ));
                 };
                 if shift == 0.0 {
-                    // A singular Hessian can factor behind a round-off pivot.
-                    let gauges = p.gauge_modes();
-                    let singular = self.near_singular(&gauges);
-                    self.report.zero_modes = 0;
-                    self.report.stable = !singular || self.gauge_modes_only(p);
+                    self.report.stable = self.stable_unshifted(p);
                     return done(res);
                 }
                 match self.escape_saddle(p, e0) {
@@ -262,6 +260,15 @@ impl Newton {
                 let ts = Instant::now();
                 self.chol.solve(&mut self.d);
                 self.report.factor_seconds += ts.elapsed().as_secs_f64();
+                // Below the floor a negligible full step needs no line search, and the next
+                // assembly would only show round-off stall the residual: take it and stop, with
+                // the stability of the factor just made and the residual before the step.
+                if shift == 0.0 && res < floor && self.scaled_step() <= NEGLIGIBLE_STEP {
+                    p.accept(&self.d, 1.0);
+                    self.report.iterations += 1;
+                    self.report.stable = self.stable_unshifted(p);
+                    return done(res);
+                }
             }
             indefinite = if self.shift_share(shift) > 0.5 {
                 indefinite + 1
@@ -314,6 +321,16 @@ impl Newton {
                 return Outcome::Failed(format!("damped Newton steps (residual {res:.3e})"));
             }
         }
+    }
+
+    /// Whether the equilibrium whose unshifted Hessian is factored is stable: a singular
+    /// Hessian can factor behind a round-off pivot, so near-singular factors are checked for
+    /// modes other than the gauges.
+    fn stable_unshifted<P: NewtonProblem>(&mut self, p: &mut P) -> bool {
+        let gauges = p.gauge_modes();
+        let singular = self.near_singular(&gauges);
+        self.report.zero_modes = 0;
+        !singular || self.gauge_modes_only(p)
     }
 
     /// The largest component of the step `d` in the unknowns' scales (edge lengths, radians).
