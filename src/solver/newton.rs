@@ -403,6 +403,7 @@ impl Newton {
             e0,
             slope,
             constrained: self.qp.is_some(),
+            model_decrease: (shift == 0.0 && !self.qp_used).then_some(0.5 * slope.abs()),
         };
         let repairs = p.repairs_lengths();
         let (chol, f) = (&mut self.chol, &mut self.f_repair[..]);
