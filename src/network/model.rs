@@ -227,16 +227,21 @@ impl Model {
     /// Calls `f(kind, category, energy)` for every term kind at the current state, in the order
     /// of [`Terms::NAMES`], once per category of the kind ([`Term::CATEGORIES`]).
     fn each_kind_energy(&self, f: impl FnMut(usize, Category, f64)) {
-        struct Each<'a, F>(&'a State, F);
+        struct Each<'a, F>(&'a State, F, &'a mut Vec<[f64; MAX_CATEGORIES]>);
         impl<F: FnMut(usize, Category, f64)> TermVisitor for Each<'_, F> {
             fn visit<const N: usize, E: Term<N>>(&mut self, kind: usize, terms: &[E]) {
-                let e = sum_energy(terms, self.0);
+                let e = sum_energy(terms, self.0, self.2);
                 for (&c, &e) in E::CATEGORIES.iter().zip(&e) {
                     (self.1)(kind, c, e);
                 }
             }
         }
-        self.terms.visit(&mut Each(&self.state, f));
+        let mut held = self.scratch.lock();
+        let mut fresh = Vec::new();
+        let blocks = held
+            .as_deref_mut()
+            .map_or(&mut fresh, |b| &mut b.energy_blocks);
+        self.terms.visit(&mut Each(&self.state, f, blocks));
     }
 
     /// Energy of each term kind at the current state, J.
@@ -560,19 +565,29 @@ impl Model {
 const MAX_CATEGORIES: usize = 2;
 
 /// Sum of the energies of `terms`, by category of their kind.
-fn sum_energy<const N: usize, E: Term<N>>(terms: &[E], st: &State) -> [f64; MAX_CATEGORIES] {
+/// Terms per block of an energy sum: blocks are evaluated in parallel and their sums added in
+/// order, so the total does not depend on the number of threads.
+const ENERGY_BLOCK: usize = 256;
+
+/// The energy of `terms` by category; `blocks` is scratch for the blocks' sums.
+fn sum_energy<const N: usize, E: Term<N>>(
+    terms: &[E],
+    st: &State,
+    blocks: &mut Vec<[f64; MAX_CATEGORIES]>,
+) -> [f64; MAX_CATEGORIES] {
     let one = |t: &E| {
         let mut e = [0.0; MAX_CATEGORIES];
         t.energies_by_category(st, &mut e[..E::CATEGORIES.len()]);
         e
     };
     let plus = |a: [f64; MAX_CATEGORIES], b: [f64; MAX_CATEGORIES]| [a[0] + b[0], a[1] + b[1]];
-    if terms.len() > 2048 {
-        terms
-            .par_iter()
-            .map(one)
-            .reduce(|| [0.0; MAX_CATEGORIES], plus)
-    } else {
-        terms.iter().map(one).fold([0.0; MAX_CATEGORIES], plus)
+    let block = |b: &[E]| b.iter().map(one).fold([0.0; MAX_CATEGORIES], plus);
+    if terms.len() <= ENERGY_BLOCK {
+        return block(terms);
     }
+    terms
+        .par_chunks(ENERGY_BLOCK)
+        .map(block)
+        .collect_into_vec(blocks);
+    blocks.iter().copied().fold([0.0; MAX_CATEGORIES], plus)
 }

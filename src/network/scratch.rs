@@ -13,6 +13,8 @@ pub struct Scratch(Mutex<Buffers>);
 pub struct Buffers {
     /// (twist slot, reference twist) pairs of a commit.
     pub remembered: Vec<(usize, f64)>,
+    /// Energies (by category) of the blocks of one term kind, summed in order.
+    pub energy_blocks: Vec<[f64; 2]>,
     /// Per-term results, one buffer per slot (term kind and derivative order).
     results: Vec<Option<Box<dyn Any + Send>>>,
 }

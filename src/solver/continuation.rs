@@ -30,7 +30,7 @@ pub const INTERMEDIATE_TOLERANCE: f64 = 1e-6;
 /// let the twisted Michell ring leave its plane below its critical twist: docs/design.md).
 const INTERMEDIATE_STEP: f64 = 1e-2;
 
-pub fn solve<P: NewtonProblem>(p: &mut P, s: &NewtonSettings) -> NewtonReport {
+pub fn solve<P: NewtonProblem + Send>(p: &mut P, s: &NewtonSettings) -> NewtonReport {
     solve_with(p, s, None).0
 }
 
@@ -39,7 +39,16 @@ pub fn solve<P: NewtonProblem>(p: &mut P, s: &NewtonSettings) -> NewtonReport {
 /// factor storage are not made again (form finding's cap steps: one per step, docs/performance.md).
 /// The caller vouches that the pattern and the ordering asked for are unchanged; `p`'s Hessian
 /// slots are then still those set for it. Returns the factorization object for the next solve.
-pub fn solve_with<P: NewtonProblem>(
+pub fn solve_with<P: NewtonProblem + Send>(
+    p: &mut P,
+    s: &NewtonSettings,
+    kept: Option<SparseCholesky>,
+) -> (NewtonReport, SparseCholesky) {
+    super::pool::in_pool(|| solve_here(p, s, kept))
+}
+
+/// [`solve_with`] on the calling thread.
+fn solve_here<P: NewtonProblem>(
     p: &mut P,
     s: &NewtonSettings,
     kept: Option<SparseCholesky>,
