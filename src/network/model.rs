@@ -293,11 +293,16 @@ impl Model {
     /// increments are folded into the frames' reference rotations.
     pub fn commit(&mut self) {
         let (layout, q) = (&self.layout, &self.state.q);
-        for (e, [a, b]) in self.edge_nodes.iter().enumerate() {
+        let advance = |(r, [a, b]): (&mut EdgeRef, &[usize; 2])| {
             let t = normalize(sub(layout.position(q, *b), layout.position(q, *a)));
-            let r = &mut self.state.edges[e];
             r.u = normalize(transport(r.t, t, r.u));
             r.t = t;
+        };
+        let edges = &mut self.state.edges;
+        if edges.len() > ENERGY_BLOCK {
+            edges.par_iter_mut().zip(&self.edge_nodes).for_each(advance);
+        } else {
+            edges.iter_mut().zip(&self.edge_nodes).for_each(advance);
         }
         // Reference twists must be recomputed with the new edge references, which give the same
         // angles as before (transport composes), then stored for unwrapping. Frame twists depend
@@ -334,10 +339,16 @@ impl Model {
         impl TermVisitor for Collect<'_> {
             fn visit<const N: usize, E: Term<N>>(&mut self, _: usize, terms: &[E]) {
                 let (st, which) = (self.0, self.1);
-                self.2.extend(terms.iter().filter_map(|t| match which {
+                let value = |t: &E| match which {
                     TwistBranch::Remembered => t.remembered(st),
                     TwistBranch::NearestTurn => t.nearest_turn(st),
-                }));
+                };
+                // In term order either way: each term writes its own slot.
+                if terms.len() > ENERGY_BLOCK {
+                    self.2.par_extend(terms.par_iter().filter_map(value));
+                } else {
+                    self.2.extend(terms.iter().filter_map(value));
+                }
             }
         }
         buffer.clear();
