@@ -8,7 +8,6 @@
 //! the smaller boundary (those with a neighbour on the other side), order both halves
 //! recursively and the separator last.
 
-use faer::sparse::linalg::cholesky::SymbolicCholesky;
 use faer::sparse::SymbolicSparseColMat;
 
 use super::linalg::SparseCholesky;
@@ -21,8 +20,8 @@ const LEAF: usize = 64;
 /// Which ordering the factorization uses.
 #[derive(Debug, Clone, Copy, PartialEq, Eq, Default)]
 pub enum Ordering {
-    /// AMD, or from [`AUTO_MIN_UNKNOWNS`] unknowns the nested dissection when its factor has
-    /// less than [`AUTO_FILL_RATIO`] of AMD's non-zeros.
+    /// AMD, or from [`AUTO_MIN_UNKNOWNS`] unknowns the nested dissection when its factorization
+    /// takes less than [`AUTO_FLOPS_RATIO`] of AMD's flops.
     #[default]
     Auto,
     Amd,
@@ -33,10 +32,12 @@ pub enum Ordering {
 /// would cost more than it could save).
 pub const AUTO_MIN_UNKNOWNS: usize = 20_000;
 
-/// The dissection pays only when it saves much fill: rods between crossings are chains, which
-/// AMD orders well, so a dissection with somewhat less fill can still factor more slowly. The
-/// threshold separates the gridshell cases measured in docs/performance.md (nested dissection).
-pub const AUTO_FILL_RATIO: f64 = 0.6;
+/// The dissection pays only when it saves much work: rods between crossings are chains, which
+/// AMD orders well, and AMD's factor, with fewer non-zeros in larger supernodes, factors faster
+/// than a dissection with half its flops (hemisphere 24×8: flops 0.52 of AMD's, 1.6× slower).
+/// Measured (docs/performance.md, fourteenth session): the dissection is faster from 0.20 of
+/// AMD's flops down (32×8: 9 %, 36×8: 23 %, 48×8: 2.8×) and slower from 0.52 up.
+pub const AUTO_FLOPS_RATIO: f64 = 0.3;
 
 /// Geometric nested dissection of the graph of `pairs` (upper-triangle (row, column) entries,
 /// duplicates and the diagonal allowed) over unknowns placed at `points`. Returns the
@@ -197,57 +198,60 @@ pub(super) fn factorization<P: NewtonProblem>(
     (SparseCholesky::from_symbolic(symbolic), slots)
 }
 
-/// The symbolic factorization of the upper triangle `pattern` with the ordering `ordering`
-/// asks for: AMD below the size where the dissection is tried (or without `positions`), else
-/// the dissection, kept under `Auto` only if it saves enough fill over AMD. AMD is analysed
-/// first (it costs a fraction of the dissection), and the dissection not at all when AMD's
-/// factor is already too close to the pattern itself for any ordering to save that much.
-/// `analyse` makes the symbolic factorization of an elimination order (`None`: AMD). Returns
-/// the one chosen, its ordering, and the other one where both were made.
+/// The elimination order of the upper triangle `pattern` that `ordering` asks for: AMD below
+/// the size where the dissection is tried (or without `positions`), else the dissection, kept
+/// under `Auto` only if its factorization takes under [`AUTO_FLOPS_RATIO`] of AMD's flops.
+/// `amd` makes AMD's order; `size` gives an order's factor non-zeros and flops (column counts,
+/// no symbolic structure). The dissection is not made at all when AMD's flops are too few for
+/// any ordering to go that far below them: a factor with ν non-zeros in n columns takes at
+/// least ν²/n flops, and ν is at least the pattern's. Returns the order, the ordering it is,
+/// and the factor non-zeros of the one compared and not kept, if any.
 pub(super) fn choose(
     pattern: &SymbolicSparseColMat<usize>,
     ordering: Ordering,
     positions: impl FnOnce() -> Option<Vec<[f64; 3]>>,
-    analyse: impl Fn(Option<&[usize]>) -> Option<SymbolicCholesky<usize>>,
-) -> Option<(
-    SymbolicCholesky<usize>,
-    Ordering,
-    Option<SymbolicCholesky<usize>>,
-)> {
+    amd: impl Fn() -> Option<Vec<usize>>,
+    size: impl Fn(&[usize]) -> Option<(usize, f64)>,
+) -> Option<(Vec<usize>, Ordering, Option<usize>)> {
     let n = pattern.ncols();
     let try_nd = match ordering {
         Ordering::Amd => false,
         Ordering::NestedDissection => true,
         Ordering::Auto => n >= AUTO_MIN_UNKNOWNS,
     };
-    let amd = match ordering {
+    if !try_nd {
+        return Some((amd()?, Ordering::Amd, None));
+    }
+    let amd_order = match ordering {
         Ordering::NestedDissection => None,
-        _ => Some(analyse(None)?),
+        _ => {
+            let order = amd()?;
+            let s = size(&order)?;
+            Some((order, s))
+        }
     };
-    // Every factor holds the pattern's entries: no ordering has fewer non-zeros than that.
-    let nd_cannot_win = amd
+    let least_flops = (pattern.row_idx().len() as f64).powi(2) / n.max(1) as f64;
+    let nd_cannot_win = amd_order
         .as_ref()
-        .is_some_and(|a| AUTO_FILL_RATIO * a.len_val() as f64 <= pattern.row_idx().len() as f64);
-    let pts = (try_nd && !nd_cannot_win).then(positions).flatten();
+        .is_some_and(|(_, (_, flops))| AUTO_FLOPS_RATIO * flops <= least_flops);
+    let pts = (!nd_cannot_win).then(positions).flatten();
     let Some(pts) = pts else {
-        let amd = match amd {
-            Some(a) => a,
-            None => analyse(None)?,
-        };
-        return Some((amd, Ordering::Amd, None));
+        return Some(match amd_order {
+            Some((order, _)) => (order, Ordering::Amd, None),
+            None => (amd()?, Ordering::Amd, None),
+        });
     };
-    let nd = analyse(Some(&dissection_of_pattern(pattern, &pts)))?;
+    let nd = dissection_of_pattern(pattern, &pts);
     drop(pts);
-    let Some(amd) = amd else {
+    let Some((amd_order, (amd_nnz, amd_flops))) = amd_order else {
         return Some((nd, Ordering::NestedDissection, None));
     };
-    Some(
-        if (nd.len_val() as f64) < AUTO_FILL_RATIO * amd.len_val() as f64 {
-            (nd, Ordering::NestedDissection, Some(amd))
-        } else {
-            (amd, Ordering::Amd, Some(nd))
-        },
-    )
+    let (nd_nnz, nd_flops) = size(&nd)?;
+    Some(if nd_flops < AUTO_FLOPS_RATIO * amd_flops {
+        (nd, Ordering::NestedDissection, Some(amd_nnz))
+    } else {
+        (amd_order, Ordering::Amd, Some(nd_nnz))
+    })
 }
 
 /// The graph of an m × m grid Laplacian (upper-triangle pairs with the diagonal) and its

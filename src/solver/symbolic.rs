@@ -6,14 +6,18 @@
 use std::hash::Hasher;
 use std::sync::{Arc, Mutex};
 
-use faer::perm::PermRef;
+use faer::dyn_stack::{MemBuffer, MemStack};
+use faer::sparse::linalg::amd;
 use faer::sparse::linalg::cholesky::{
-    factorize_symbolic_cholesky, SymbolicCholesky, SymbolicCholeskyRaw, SymmetricOrdering,
+    factorize_symbolic_cholesky, simplicial, SymbolicCholesky, SymbolicCholeskyRaw,
+    SymmetricOrdering,
 };
 use faer::sparse::SymbolicSparseColMat;
 use faer::Side;
 
 use super::linalg::symbolic_params;
+#[cfg(test)]
+use super::ordering::AUTO_FLOPS_RATIO;
 use super::ordering::{choose, Ordering};
 
 /// A pattern's symbolic analysis, shared read-only by every factorization of that pattern.
@@ -52,7 +56,8 @@ pub(super) struct Permuted {
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Compared {
     pub factor_nnz: usize,
-    /// Bytes of its symbolic structure, alive while the two orderings are compared.
+    /// Bytes of what comparing it held (a renumbered pattern, its column counts and
+    /// elimination tree), alive while the two orderings are compared.
     pub structure_bytes: u64,
 }
 
@@ -203,8 +208,11 @@ pub fn with_order(
         ordering: Ordering::Amd,
     };
     let (pattern, diag) = upper_pattern(n, pairs);
-    let chosen = symbolic_factor(&pattern, elimination)?;
-    let (permuted, cholesky) = permute(&pattern, &diag, &chosen)?;
+    let order = match elimination {
+        Some(e) => e.to_vec(),
+        None => amd_order(&pattern)?,
+    };
+    let (permuted, cholesky) = permute(&pattern, &diag, order)?;
     let ordering = match elimination {
         Some(_) => Ordering::NestedDissection,
         None => Ordering::Amd,
@@ -228,44 +236,104 @@ fn analyse_uncached(
     key: Key,
 ) -> Option<Symbolic> {
     let (pattern, diag) = upper_pattern(n, pairs);
-    let (analysis, chosen, other) = choose(&pattern, ordering, positions, |order| {
-        symbolic_factor(&pattern, order)
-    })?;
-    let (permuted, cholesky) = permute(&pattern, &diag, &analysis)?;
-    drop(analysis);
+    let (elimination, chosen, other) = choose(
+        &pattern,
+        ordering,
+        positions,
+        || amd_order(&pattern),
+        |order| factor_size(&pattern, order),
+    )?;
+    let (permuted, cholesky) = permute(&pattern, &diag, elimination)?;
+    // What the comparison held besides the two orders: one renumbered pattern, its column
+    // counts and elimination tree.
+    let compared_bytes = 8 * (pattern.row_idx().len() + 4 * n) as u64;
     Some(Symbolic {
         pattern,
         diag,
         permuted,
         cholesky,
         ordering: chosen,
-        other: other.map(|o| Compared {
-            factor_nnz: o.len_val(),
-            structure_bytes: structure_bytes(&o),
+        other: other.map(|factor_nnz| Compared {
+            factor_nnz,
+            structure_bytes: compared_bytes,
         }),
         key,
     })
 }
 
-/// faer's symbolic factorization of the upper triangle `pattern` with an elimination order
-/// (`None`: AMD).
-pub(super) fn symbolic_factor(
-    pattern: &SymbolicSparseColMat<usize>,
-    elimination: Option<&[usize]>,
-) -> Option<SymbolicCholesky<usize>> {
+/// The elimination order AMD gives the upper triangle `pattern`, as faer's own analysis with
+/// `SymmetricOrdering::Amd` makes it (same routine and parameters).
+fn amd_order(pattern: &SymbolicSparseColMat<usize>) -> Option<Vec<usize>> {
     let n = pattern.ncols();
-    let inverse: Vec<usize> = elimination.map_or_else(Vec::new, |fwd| {
-        let mut inv = vec![0; n];
-        for (k, &i) in fwd.iter().enumerate() {
-            inv[i] = k;
+    let nnz = pattern.row_idx().len();
+    let (mut fwd, mut inv) = (vec![0usize; n], vec![0usize; n]);
+    let mut mem = MemBuffer::try_new(amd::order_maybe_unsorted_scratch::<usize>(n, nnz)).ok()?;
+    amd::order_maybe_unsorted(
+        &mut fwd,
+        &mut inv,
+        pattern.as_ref(),
+        symbolic_params().amd_params,
+        MemStack::new(&mut mem),
+    )
+    .ok()?;
+    Some(fwd)
+}
+
+/// The Cholesky factor of the upper triangle `pattern` eliminated in `order` (position k: the
+/// unknown eliminated k-th): its non-zeros and flops (Σ c², c its column counts), from the
+/// column counts of its elimination tree; no symbolic structure is made. `None` on index
+/// overflow.
+fn factor_size(pattern: &SymbolicSparseColMat<usize>, order: &[usize]) -> Option<(usize, f64)> {
+    let n = pattern.ncols();
+    let rank = inverse(order);
+    let (cp, ri) = (pattern.col_ptr(), pattern.row_idx());
+    // The renumbered upper triangle, rows unsorted: the column counts do not need them sorted.
+    let mut start = vec![0usize; n + 1];
+    for c in 0..n {
+        for &r in &ri[cp[c]..cp[c + 1]] {
+            start[rank[r].max(rank[c]) + 1] += 1;
         }
-        inv
-    });
-    let ordering = match elimination {
-        Some(fwd) => SymmetricOrdering::Custom(PermRef::new_checked(fwd, &inverse, n)),
-        None => SymmetricOrdering::Amd,
-    };
-    factorize_symbolic_cholesky(pattern.as_ref(), Side::Upper, ordering, symbolic_params()).ok()
+    }
+    for c in 0..n {
+        start[c + 1] += start[c];
+    }
+    let mut rows = vec![0usize; ri.len()];
+    let mut fill = start.clone();
+    for c in 0..n {
+        for &r in &ri[cp[c]..cp[c + 1]] {
+            let (a, b) = (rank[r], rank[c]);
+            let col = a.max(b);
+            rows[fill[col]] = a.min(b);
+            fill[col] += 1;
+        }
+    }
+    drop(fill);
+    let upper = SymbolicSparseColMat::new_unsorted_checked(n, n, start, None, rows);
+    let mut etree = vec![0isize; n];
+    let mut counts = vec![0usize; n];
+    let mut mem = MemBuffer::try_new(simplicial::prefactorize_symbolic_cholesky_scratch::<usize>(
+        n,
+        ri.len(),
+    ))
+    .ok()?;
+    simplicial::prefactorize_symbolic_cholesky(
+        &mut etree,
+        &mut counts,
+        upper.as_ref(),
+        MemStack::new(&mut mem),
+    );
+    let flops = counts.iter().map(|&c| (c as f64) * (c as f64)).sum();
+    let nnz = counts.iter().try_fold(0usize, |a, &c| a.checked_add(c))?;
+    Some((nnz, flops))
+}
+
+/// The inverse of a permutation.
+fn inverse(order: &[usize]) -> Vec<usize> {
+    let mut inv = vec![0; order.len()];
+    for (k, &i) in order.iter().enumerate() {
+        inv[i] = k;
+    }
+    inv
 }
 
 /// The upper-triangle `pattern` renumbered by `analysis`'s elimination order, on the side its
@@ -274,17 +342,9 @@ pub(super) fn symbolic_factor(
 fn permute(
     pattern: &SymbolicSparseColMat<usize>,
     diag: &[usize],
-    analysis: &SymbolicCholesky<usize>,
+    elimination: Vec<usize>,
 ) -> Option<(Permuted, SymbolicCholesky<usize>)> {
-    let n = pattern.ncols();
-    let elimination: Vec<usize> = match analysis.perm() {
-        Some(p) => p.arrays().0.to_vec(),
-        None => (0..n).collect(),
-    };
-    let mut rank = vec![0usize; n];
-    for (k, &i) in elimination.iter().enumerate() {
-        rank[i] = k;
-    }
+    let rank = inverse(&elimination);
     // faer analyses a matrix in the identity order from its upper triangle whatever side it is
     // told; the supernodal factorization then reads the lower one.
     let (upper, of_upper) = renumbered(pattern, &rank, Side::Upper);
@@ -446,6 +506,84 @@ fn hash_pairs(pairs: &[(usize, usize)]) -> u64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The factor's non-zeros and flops from the elimination tree's column counts, against
+    /// elimination by hand (each eliminated unknown joins its remaining neighbours), on a grid
+    /// in a scrambled order.
+    #[test]
+    fn factor_size_counts_the_fill_of_an_elimination() {
+        let m = 6;
+        let n = m * m;
+        let (pairs, _) = crate::solver::ordering::grid_graph(m);
+        let (pattern, _) = upper_pattern(n, &pairs);
+        let order: Vec<usize> = (0..n).map(|k| (7 * k + 3) % n).collect();
+        let mut adj = vec![std::collections::BTreeSet::new(); n];
+        for &(r, c) in &pairs {
+            if r != c {
+                adj[r].insert(c);
+                adj[c].insert(r);
+            }
+        }
+        let (mut nnz, mut flops, mut gone) = (0, 0.0, vec![false; n]);
+        for &v in &order {
+            let later: Vec<usize> = adj[v].iter().copied().filter(|&u| !gone[u]).collect();
+            for &a in &later {
+                for &b in &later {
+                    if a != b {
+                        adj[a].insert(b);
+                    }
+                }
+            }
+            gone[v] = true;
+            let c = later.len() + 1;
+            nnz += c;
+            flops += (c * c) as f64;
+        }
+        assert_eq!(factor_size(&pattern, &order), Some((nnz, flops)));
+    }
+
+    /// `Auto` keeps the dissection only when its flops are under `AUTO_FLOPS_RATIO` of AMD's,
+    /// and does not make it when AMD's flops are too few for that (its positions not asked).
+    #[test]
+    fn auto_keeps_the_dissection_only_for_a_large_saving_in_flops() {
+        let m = 150;
+        let (pairs, pts) = crate::solver::ordering::grid_graph(m);
+        let (pattern, _) = upper_pattern(m * m, &pairs);
+        let amd = amd_order(&pattern).unwrap();
+        let amd_size = factor_size(&pattern, &amd).unwrap();
+        let with = |share: f64, amd_flops: f64| {
+            let size = |o: &[usize]| {
+                let (nnz, _) = factor_size(&pattern, o)?;
+                Some(if o == &amd[..] {
+                    (nnz, amd_flops)
+                } else {
+                    (nnz, share * amd_size.1)
+                })
+            };
+            let asked = std::cell::Cell::new(false);
+            let positions = || {
+                asked.set(true);
+                Some(pts.clone())
+            };
+            let (_, chosen, _) = choose(
+                &pattern,
+                Ordering::Auto,
+                positions,
+                || Some(amd.clone()),
+                size,
+            )
+            .unwrap();
+            (chosen, asked.get())
+        };
+        let f = amd_size.1;
+        assert_eq!(
+            with(0.9 * AUTO_FLOPS_RATIO, f),
+            (Ordering::NestedDissection, true)
+        );
+        assert_eq!(with(1.1 * AUTO_FLOPS_RATIO, f), (Ordering::Amd, true));
+        let least = (pattern.row_idx().len() as f64).powi(2) / (m * m) as f64;
+        assert_eq!(with(0.0, least / AUTO_FLOPS_RATIO), (Ordering::Amd, false));
+    }
 
     /// The same pairs find the same analysis in the cache; pairs of another pattern would not
     /// pass [`Symbolic::slots`], and the least recently used analysis is dropped.
