@@ -299,7 +299,7 @@ impl Model {
             r.t = t;
         };
         let edges = &mut self.state.edges;
-        if edges.len() > ENERGY_BLOCK {
+        if edges.len() > PARALLEL_BLOCK {
             edges.par_iter_mut().zip(&self.edge_nodes).for_each(advance);
         } else {
             edges.iter_mut().zip(&self.edge_nodes).for_each(advance);
@@ -344,7 +344,7 @@ impl Model {
                     TwistBranch::NearestTurn => t.nearest_turn(st),
                 };
                 // In term order either way: each term writes its own slot.
-                if terms.len() > ENERGY_BLOCK {
+                if terms.len() > PARALLEL_BLOCK {
                     self.2.par_extend(terms.par_iter().filter_map(value));
                 } else {
                     self.2.extend(terms.iter().filter_map(value));
@@ -575,12 +575,13 @@ impl Model {
 /// The most categories one kind of term reports ([`Term::CATEGORIES`]).
 const MAX_CATEGORIES: usize = 2;
 
-/// Sum of the energies of `terms`, by category of their kind.
-/// Terms per block of an energy sum: blocks are evaluated in parallel and their sums added in
-/// order, so the total does not depend on the number of threads.
-const ENERGY_BLOCK: usize = 256;
+/// Terms (or edges) per block of a parallel sweep: energies are summed per block in parallel
+/// and the blocks' sums added in order, so the total does not depend on the number of threads;
+/// fewer than this stay on the calling thread.
+const PARALLEL_BLOCK: usize = 256;
 
-/// The energy of `terms` by category; `blocks` is scratch for the blocks' sums.
+/// Sum of the energies of `terms`, by category of their kind; `blocks` is scratch for the
+/// blocks' sums.
 fn sum_energy<const N: usize, E: Term<N>>(
     terms: &[E],
     st: &State,
@@ -593,11 +594,11 @@ fn sum_energy<const N: usize, E: Term<N>>(
     };
     let plus = |a: [f64; MAX_CATEGORIES], b: [f64; MAX_CATEGORIES]| [a[0] + b[0], a[1] + b[1]];
     let block = |b: &[E]| b.iter().map(one).fold([0.0; MAX_CATEGORIES], plus);
-    if terms.len() <= ENERGY_BLOCK {
+    if terms.len() <= PARALLEL_BLOCK {
         return block(terms);
     }
     terms
-        .par_chunks(ENERGY_BLOCK)
+        .par_chunks(PARALLEL_BLOCK)
         .map(block)
         .collect_into_vec(blocks);
     blocks.iter().copied().fold([0.0; MAX_CATEGORIES], plus)

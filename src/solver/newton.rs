@@ -31,10 +31,10 @@ const TRUSTED_RESIDUAL: f64 = 1e-4;
 /// radians) moves nothing that matters: below the round-off floor, Newton takes it without a
 /// line search and stops instead of assembling once more to see round-off stall the residual
 /// (and after such a step taken above the floor, it stops at the next iterate below the floor).
-/// Quadratic convergence makes the
-/// next step of the order of its square; a soft mode's correction, which the residual below the
-/// floor cannot see, is a step of its own size (the slender cantilever's last one moved its tip
-/// by 1e-9 of its length, thousands of edge lengths times this).
+/// Quadratic convergence makes the next step of the order of its square; a soft mode's
+/// correction, which the residual below the floor cannot see, is a step of its own size (the
+/// slender cantilever's last one moved its tip by 1e-9 of its length, thousands of edge lengths
+/// times this).
 const NEGLIGIBLE_STEP: f64 = 1e-10;
 /// Relative residual below which the round-off floor is measured (once per `iterate`): above
 /// it, no floor of a sane problem matters, and measuring costs two gradient evaluations.

@@ -16,8 +16,6 @@ use faer::sparse::SymbolicSparseColMat;
 use faer::Side;
 
 use super::linalg::symbolic_params;
-#[cfg(test)]
-use super::ordering::AUTO_FLOPS_RATIO;
 use super::ordering::{choose, Ordering};
 
 /// A pattern's symbolic analysis, shared read-only by every factorization of that pattern.
@@ -336,9 +334,9 @@ fn inverse(order: &[usize]) -> Vec<usize> {
     inv
 }
 
-/// The upper-triangle `pattern` renumbered by `analysis`'s elimination order, on the side its
-/// kind of factor reads, and the analysis of that matrix in the identity order (the same
-/// elimination tree and factor).
+/// The upper-triangle `pattern` renumbered to the elimination order `elimination` (position
+/// k: the unknown eliminated k-th), on the side its kind of factor reads, and the analysis of
+/// that matrix in the identity order: the one symbolic analysis of the ordering chosen.
 fn permute(
     pattern: &SymbolicSparseColMat<usize>,
     diag: &[usize],
@@ -506,6 +504,7 @@ fn hash_pairs(pairs: &[(usize, usize)]) -> u64 {
 #[cfg(test)]
 mod tests {
     use super::*;
+    use crate::solver::ordering::AUTO_FLOPS_RATIO;
 
     /// The factor's non-zeros and flops from the elimination tree's column counts, against
     /// elimination by hand (each eliminated unknown joins its remaining neighbours), on a grid
