@@ -54,8 +54,8 @@ pub(super) struct Permuted {
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
 pub struct Compared {
     pub factor_nnz: usize,
-    /// Bytes of what comparing it held (a renumbered pattern, its column counts and
-    /// elimination tree), alive while the two orderings are compared.
+    /// Bytes of what comparing it held (a renumbered pattern with its entries' positions, its
+    /// column counts and elimination tree), alive while the two orderings are compared.
     pub structure_bytes: u64,
 }
 
@@ -242,9 +242,9 @@ fn analyse_uncached(
         |order| factor_size(&pattern, order),
     )?;
     let (permuted, cholesky) = permute(&pattern, &diag, elimination)?;
-    // What the comparison held besides the two orders: one renumbered pattern, its column
-    // counts and elimination tree.
-    let compared_bytes = 8 * (pattern.row_idx().len() + 4 * n) as u64;
+    // What the comparison held besides the two orders: one renumbered pattern with its
+    // entries' positions, its column counts and elimination tree.
+    let compared_bytes = 8 * (2 * pattern.row_idx().len() + 4 * n) as u64;
     Some(Symbolic {
         pattern,
         diag,
@@ -283,35 +283,12 @@ fn amd_order(pattern: &SymbolicSparseColMat<usize>) -> Option<Vec<usize>> {
 /// overflow.
 fn factor_size(pattern: &SymbolicSparseColMat<usize>, order: &[usize]) -> Option<(usize, f64)> {
     let n = pattern.ncols();
-    let rank = inverse(order);
-    let (cp, ri) = (pattern.col_ptr(), pattern.row_idx());
-    // The renumbered upper triangle, rows unsorted: the column counts do not need them sorted.
-    let mut start = vec![0usize; n + 1];
-    for c in 0..n {
-        for &r in &ri[cp[c]..cp[c + 1]] {
-            start[rank[r].max(rank[c]) + 1] += 1;
-        }
-    }
-    for c in 0..n {
-        start[c + 1] += start[c];
-    }
-    let mut rows = vec![0usize; ri.len()];
-    let mut fill = start.clone();
-    for c in 0..n {
-        for &r in &ri[cp[c]..cp[c + 1]] {
-            let (a, b) = (rank[r], rank[c]);
-            let col = a.max(b);
-            rows[fill[col]] = a.min(b);
-            fill[col] += 1;
-        }
-    }
-    drop(fill);
-    let upper = SymbolicSparseColMat::new_unsorted_checked(n, n, start, None, rows);
+    let (upper, _) = renumbered(pattern, &inverse(order), Side::Upper);
     let mut etree = vec![0isize; n];
     let mut counts = vec![0usize; n];
     let mut mem = MemBuffer::try_new(simplicial::prefactorize_symbolic_cholesky_scratch::<usize>(
         n,
-        ri.len(),
+        upper.row_idx().len(),
     ))
     .ok()?;
     simplicial::prefactorize_symbolic_cholesky(
