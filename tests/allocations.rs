@@ -79,9 +79,11 @@ fn allocations_per_iteration(name: &str) -> (Vec<usize>, usize, usize) {
 /// A gridshell lift, a buckled strip, a post-buckled column and a straight rod closed into a
 /// ring by its clamps (corrections, length repairs, regularized
 /// steps, saddle escapes, sub-steps and retries). A solve builds its length projector in the
-/// first iteration that needs one; after it, only iterations that end a sub-step allocate (the
-/// next one's snapshot and prediction, a retry's failure message), a bounded number of times
-/// whatever the network's size (before, every iteration allocated about 14 times).
+/// first iteration that needs one (the first prediction to project, or the first line search
+/// that tries the geometric curve: any iteration, its allocations grow with the network);
+/// besides that one, only iterations that end a sub-step allocate (the next one's snapshot and
+/// prediction, a retry's failure message), a bounded number of times whatever the network's
+/// size (before, every iteration allocated about 14 times).
 #[test]
 fn newton_iterations_do_not_allocate() {
     for name in [
@@ -94,10 +96,13 @@ fn newton_iterations_do_not_allocate() {
         // Enough iterations to see the loop's steady state (16 for the strip, 40–100 for the
         // others since the second-order predictor).
         assert!(counts.len() > 12, "{name}: {} iterations", counts.len());
-        let allocating = counts[1..].iter().filter(|&&c| c > 0).count();
-        let most = counts[1..].iter().copied().max().unwrap_or(0);
+        let mut later = counts[1..].to_vec();
+        later.sort_unstable_by(|a, b| b.cmp(a));
+        let allocating = later.iter().filter(|&&c| c > 0).count();
+        // The largest may be the projector's iteration; every other is bounded.
+        let most = later.get(1).copied().unwrap_or(0);
         assert!(
-            allocating <= substeps + retries && most <= 80,
+            allocating <= substeps + retries + 1 && most <= 80,
             "{name}: {substeps} sub-steps, {retries} retries, allocations per iteration {counts:?}"
         );
     }

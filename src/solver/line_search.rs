@@ -1,6 +1,7 @@
 //! The line search of a Newton step.
 
 use super::problem::NewtonProblem;
+use super::step::Second;
 
 /// Backtracking Armijo search along x + αd + α²c for each candidate correction c (or along
 /// x + αd when there is none), from the problem's largest admissible step; with constraints,
@@ -28,7 +29,8 @@ use super::problem::NewtonProblem;
 /// there (docs/stiff.md section 3, `networks/extreme/nitinol_cross.ron`).
 pub(super) struct Search<'a> {
     pub d: &'a [f64],
-    pub corrections: &'a [&'a [f64]],
+    /// The first curve's correction (None: a straight line).
+    pub first: Option<&'a [f64]>,
     pub e0: f64,
     pub slope: f64,
     pub constrained: bool,
@@ -41,9 +43,29 @@ pub(super) struct Search<'a> {
 /// Newton's quadratic model to this share is taken without trying the other curves.
 const MODEL_AGREEMENT: f64 = 0.1;
 
+/// The second curve's correction: its buffer and whether it holds one (made on first use when
+/// [`Second::Deferred`]).
+pub(super) struct SecondCurve<'b> {
+    pub buf: &'b mut [f64],
+    pub state: Second,
+}
+
+impl SecondCurve<'_> {
+    /// The correction, made now if it was deferred.
+    fn get<P: NewtonProblem>(&mut self, p: &mut P, d: &[f64]) -> Option<&[f64]> {
+        if self.state == Second::Deferred {
+            self.state = if p.step_correction(d, self.buf) {
+                Second::Ready
+            } else {
+                Second::Absent
+            };
+        }
+        (self.state == Second::Ready).then_some(&*self.buf)
+    }
+}
+
 impl Search<'_> {
-    fn fill(&self, k: usize, alpha: f64, trial: &mut [f64]) {
-        let c = self.corrections.get(k);
+    fn fill(&self, c: Option<&[f64]>, alpha: f64, trial: &mut [f64]) {
         for i in 0..self.d.len() {
             trial[i] = alpha * self.d[i] + c.map_or(0.0, |c| alpha * alpha * c[i]);
         }
@@ -53,7 +75,7 @@ impl Search<'_> {
     fn start<P: NewtonProblem>(&self, p: &P, trial: &mut [f64]) -> f64 {
         let mut alpha = p.max_step(self.d);
         for _ in 0..60 {
-            self.fill(0, alpha, trial);
+            self.fill(self.first, alpha, trial);
             let m = p.max_step(trial);
             if m >= 1.0 {
                 break;
@@ -68,11 +90,12 @@ impl Search<'_> {
         &self,
         p: &mut P,
         (trial, kept): (&mut [f64], &mut [f64]),
+        second: &mut SecondCurve<'_>,
         mut trust: Option<(f64, &mut [f64])>,
         repair: &mut impl FnMut(&mut P, &mut [f64], f64) -> bool,
     ) -> Option<f64> {
         let slack = 64.0 * f64::EPSILON * self.e0.abs();
-        let curves = self.corrections.len().max(1);
+        let curves = if second.state == Second::Absent { 1 } else { 2 };
         let mut alpha = self.start(p, trial);
         for _ in 0..60 {
             // (curve, repaired, energy) of the best candidate so far.
@@ -88,8 +111,16 @@ impl Search<'_> {
                         break;
                     }
                 }
+                let c = if k == 0 {
+                    self.first
+                } else {
+                    match second.get(p, self.d) {
+                        Some(c) => Some(c),
+                        None => break,
+                    }
+                };
                 for repaired in [false, true] {
-                    self.fill(k, alpha, trial);
+                    self.fill(c, alpha, trial);
                     if repaired && !repair(p, trial, alpha) {
                         continue;
                     }
@@ -125,8 +156,10 @@ impl Search<'_> {
             if let Some((k, repaired, _)) = best {
                 if repaired {
                     trial.copy_from_slice(kept);
+                } else if k == 0 {
+                    self.fill(self.first, alpha, trial);
                 } else {
-                    self.fill(k, alpha, trial);
+                    self.fill(second.get(p, self.d), alpha, trial);
                 }
                 return Some(alpha);
             }

@@ -17,12 +17,12 @@
 use std::time::Instant;
 
 use super::linalg::SparseCholesky;
-use super::line_search::Search;
+use super::line_search::{Search, SecondCurve};
 use super::problem::NewtonProblem;
 use super::qp::StepQp;
 use super::regularize::Saddle;
 use super::settings::{NewtonReport, NewtonSettings};
-use super::step::repair_lengths;
+use super::step::{repair_lengths, Second};
 
 /// Relative residual below which a full Newton step on a positive definite Hessian may be
 /// accepted for reducing the residual when the Armijo test cannot resolve the energy change.
@@ -285,10 +285,11 @@ impl Newton {
             }
             prev_energy = last_energy;
             last_energy = e0;
-            let curves = self.corrections(p, shift);
+            let model = shift == 0.0 && !self.qp_used;
+            let curves = self.corrections(p, shift, model);
             let mut small_step = false;
             last_step = f64::INFINITY;
-            match self.search(p, e0, shift, res, curves) {
+            match self.search(p, (e0, shift, res), curves) {
                 Some(alpha) => {
                     damped = if alpha < 0.5 { damped + 1 } else { 0 };
                     if alpha == 1.0 && shift == 0.0 && qp_shift.is_none() {
@@ -301,7 +302,7 @@ impl Newton {
                         && lim.step_tolerance.is_some_and(|t| self.scaled_step() <= t);
                 }
                 None => {
-                    let corrected = curves > 0;
+                    let corrected = curves.0;
                     let failed = (e0, shift, res, floor, corrected);
                     if let Err(outcome) = self.after_failed_search(p, failed, &mut escapes) {
                         return outcome;
@@ -382,24 +383,21 @@ impl Newton {
         shifted / -slope
     }
 
-    /// The line search along the step corrected by the first `curves` of `c`, `c2`; accepts
-    /// the step found.
+    /// The line search along the step corrected by `c` (if `curves.0`) and `c2`; accepts the
+    /// step found.
     fn search<P: NewtonProblem>(
         &mut self,
         p: &mut P,
-        e0: f64,
-        shift: f64,
-        res: f64,
-        curves: usize,
+        (e0, shift, res): (f64, f64, f64),
+        curves: (bool, Second),
     ) -> Option<f64> {
         let slope: f64 = self.g.iter().zip(&self.d).map(|(a, b)| a * b).sum();
         // Near convergence on a positive definite Hessian the full Newton step may be judged by
         // its residual when the energy cannot resolve its decrease (see `line_search`).
         let trust = (shift == 0.0 && res < TRUSTED_RESIDUAL && !self.qp_used).then_some(res);
-        let corrections = [&self.c[..], &self.c2[..]];
         let search = Search {
             d: &self.d,
-            corrections: &corrections[..curves],
+            first: curves.0.then_some(&self.c[..]),
             e0,
             slope,
             constrained: self.qp.is_some(),
@@ -410,9 +408,14 @@ impl Newton {
         let mut repair = |p: &mut P, trial: &mut [f64], alpha: f64| {
             repairs && repair_lengths(p, (&mut *chol, &mut *f), (search.d, slope), alpha, trial)
         };
+        let mut second = SecondCurve {
+            buf: &mut self.c2,
+            state: curves.1,
+        };
         let alpha = search.run(
             p,
             (&mut self.trial, &mut self.c_repaired),
+            &mut second,
             trust.map(|r| (r, &mut self.g_trial[..])),
             &mut repair,
         )?;

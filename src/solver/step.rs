@@ -26,6 +26,15 @@ const REPAIR_PASSES: usize = 8;
 /// step's predicted decrease α|gᵀd|: below, the repair cannot change the line search's verdict.
 const REPAIR_SHARE: f64 = 1e-5;
 
+/// The line search's second curve (its correction is in `Newton::c2`).
+#[derive(Clone, Copy, PartialEq, Eq, Debug)]
+pub(super) enum Second {
+    Absent,
+    Ready,
+    /// The problem's geometric correction of the step, not yet made.
+    Deferred,
+}
+
 /// Repairs the lengths of the line search's trial point `trial` (a step from the current
 /// iterate) to those the linearization of α·d gives, by passes c = −(H + τW)⁻¹f with f the
 /// stretch force of the remaining excess (`NewtonProblem::excess_force`; `chol` holds the
@@ -60,9 +69,9 @@ pub(super) fn repair_lengths<P: NewtonProblem>(
 
 impl Newton {
     /// Second-order corrections of the step `d` for the line search's curves x + αd + α²c, in
-    /// `c` and `c2`; returns how many. First the energy-optimal one, c = −(H + τW)⁻¹f with f the
-    /// stretch force the step's first-order length error would create: it restores lengths the
-    /// way the structure's stiffness prefers. Then the problem's own geometric correction (the
+    /// `c` and `c2`; returns whether `c` holds one, and what of `c2`. First the energy-optimal
+    /// one, c = −(H + τW)⁻¹f with f the stretch force the step's first-order length error would
+    /// create: it restores lengths the way the structure's stiffness prefers. Then the problem's own geometric correction (the
     /// smallest motion restoring lengths), which is better where a step turns edges by large
     /// angles (a rod near a fold) but moves whole chains rigidly near clamps, more so the finer
     /// the rod (docs/design.md).
@@ -79,9 +88,19 @@ impl Newton {
     /// wherever the excess energy was below 1e-5 of the predicted decrease was tried: the
     /// excess force still dominated the residual there, and `buckle_toward` on the hemisphere
     /// footprint took 19 iterations instead of 17.)
-    pub(super) fn corrections<P: NewtonProblem>(&mut self, p: &mut P, shift: f64) -> usize {
+    ///
+    /// With `defer` (an unshifted Hessian and Newton's model: the line search may skip the
+    /// second curve, see `line_search`), the geometric correction behind the energy-optimal one
+    /// is not made here but returned as [`Second::Deferred`], for the line search to make if it
+    /// tries that curve.
+    pub(super) fn corrections<P: NewtonProblem>(
+        &mut self,
+        p: &mut P,
+        shift: f64,
+        defer: bool,
+    ) -> (bool, Second) {
         if p.excess_force(&self.d, (&self.d, 1.0), &mut self.c) == 0.0 {
-            return 0;
+            return (false, Second::Absent);
         }
         self.chol.solve(&mut self.c);
         self.c.iter_mut().for_each(|x| *x = -*x);
@@ -90,15 +109,22 @@ impl Newton {
         // unknowns) comes from H⁻¹ amplifying round-off along a soft or zero-energy mode.
         let w = &self.weights;
         let norm = |v: &[f64]| v.iter().zip(w).map(|(x, w)| w * x * x).sum::<f64>();
-        let mut k = usize::from(norm(&self.c) <= norm(&self.d));
-        let buf = if k == 0 { &mut self.c } else { &mut self.c2 };
-        if p.step_correction(&self.d, buf) {
-            k += 1;
+        let stretch = norm(&self.c) <= norm(&self.d);
+        if stretch && defer {
+            return (true, Second::Deferred);
         }
-        if k == 2 && shift > 0.0 {
-            std::mem::swap(&mut self.c, &mut self.c2);
+        let buf = if stretch { &mut self.c2 } else { &mut self.c };
+        let made = p.step_correction(&self.d, buf);
+        match (stretch, made) {
+            (false, made) => (made, Second::Absent),
+            (true, false) => (true, Second::Absent),
+            (true, true) => {
+                if shift > 0.0 {
+                    std::mem::swap(&mut self.c, &mut self.c2);
+                }
+                (true, Second::Ready)
+            }
         }
-        k
     }
 
     /// First sub-step of the path, from an equilibrium at `lam`: moves the free unknowns by the
