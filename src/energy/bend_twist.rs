@@ -16,7 +16,7 @@ use crate::math::dual::{compose, separable_dot};
 use crate::math::vec::dot;
 use crate::math::{Real, HD};
 use crate::rod::committed_frames::CommittedPair;
-use crate::rod::frames::{oriented_reference_frame, FrameDots, RefFrame};
+use crate::rod::frames::{oriented_reference_frame, unwrap_angle, FrameDots, RefFrame};
 use crate::variables::State;
 
 /// The bending and twisting terms of one stencil (same variables, edges and signs).
@@ -42,9 +42,7 @@ impl BendTwist {
     /// differentiated in those coordinates: the energy as a function of (κb's projections,
     /// reference twist, θ⁰, θ¹) is differentiated by hand and chained with them.
     #[inline(always)]
-    fn composed(&self, st: &State, dots: &FrameDots<HD<6>>, theta: [f64; 2]) -> HD<8> {
-        let p = dots.binormal_projections();
-        let r = self.twist.reference_twist_of(st, dots);
+    fn composed(&self, p: [HD<6>; 4], r: HD<6>, theta: [f64; 2]) -> HD<8> {
         let o = [p[0].v, p[1].v, p[2].v, p[3].v, r.v, theta[0], theta[1]];
         let (b, t) = (&self.bend, &self.twist);
         let mut energy = HD::<7>::cst(0.0);
@@ -98,11 +96,16 @@ impl Term<11> for BendTwist {
         let along = [[y[0], y[1], y[2]], [y[3], y[4], y[5]]];
         let theta = [y[6], y[7]];
         let outer = match CommittedPair::new(refs, b.signs, along) {
-            Some(pair) => pair.to_edges(&self.composed(st, &pair.dots(), theta)),
+            Some(pair) => {
+                let p = pair.dots().binormal_projections();
+                let r = unwrap_angle(pair.reference_twist(), st.twist_prev[self.twist.slot]);
+                pair.to_edges(&self.composed(p, r, theta))
+            }
             None => {
                 let frame = |j: usize| self.frame(st, j, HD::<3>::vars(&along[j]));
                 let dots = FrameDots::<HD<6>>::new(&frame(0), &frame(1), separable_dot::<3, 3, 6>);
-                self.composed(st, &dots, theta)
+                let r = self.twist.reference_twist_of(st, &dots);
+                self.composed(dots.binormal_projections(), r, theta)
             }
         };
         super::expand(&STENCIL_MAP, &outer)

@@ -97,6 +97,56 @@ impl CommittedPair {
         }
     }
 
+    /// The reference twist (not unwrapped) with its derivatives in the local coordinates, in
+    /// closed form. With χ = 1 + t⁰·t¹, κb = 2 t⁰×t¹/χ and t̃ = (t⁰ + t¹)/χ, time-parallel
+    /// reference frames give ∇ₑr = κb/(2|e|) for each edge e and
+    /// ∇²ₑ₀ₑ₀ r = −(κb⊗(t⁰ + t̃) + (t⁰ + t̃)⊗κb)/(4|e⁰|²) (the same for e¹ with t¹),
+    /// ∇²ₑ₀ₑ₁ r = (2[t⁰]ₓ/χ − κb⊗t̃)/(2|e⁰||e¹|) (Bergou et al. 2010; checked against the
+    /// hyper-dual frames, tests/fused_kernels.rs). In the local coordinates z = F e/ℓ every
+    /// product with a frame vector is one of `d`.
+    #[inline(always)]
+    pub fn reference_twist(&self) -> HD<6> {
+        let d = &self.d;
+        let (tt, t1u0, t1v0, t0u1, t0v1) = (d[T][T], d[U][T], d[V][T], d[T][U], d[T][V]);
+        let raw = FrameDots {
+            tt,
+            t1u0,
+            t1v0,
+            t0u1,
+            t0v1,
+            u0u1: d[U][U],
+            u0v1: d[U][V],
+        }
+        .reference_twist();
+        let chi = 1.0 + tt;
+        let ic = chi.recip();
+        // F κb / 2 for each frame (the gradient), F (t + t̃) and F t̃ of frame 1.
+        let g0 = [0.0, -t1v0 * ic, t1u0 * ic];
+        let g1 = [0.0, t0v1 * ic, -t0u1 * ic];
+        let b0 = [2.0, t1u0 * ic, t1v0 * ic];
+        let b1 = [2.0, t0u1 * ic, t0v1 * ic];
+        let c1 = [1.0, t0u1 * ic, t0v1 * ic];
+        let mut r = HD::<6>::cst(raw);
+        r.g[..3].copy_from_slice(&g0);
+        r.g[3..].copy_from_slice(&g1);
+        for i in 0..3 {
+            for j in i..3 {
+                r.h[i][j] = -0.5 * (g0[i] * b0[j] + b0[i] * g0[j]);
+                r.h[3 + i][3 + j] = -0.5 * (g1[i] * b1[j] + b1[i] * g1[j]);
+            }
+            // F⁰[t⁰]ₓF¹ᵀ: rows (t⁰, u⁰, v⁰) are (0, −v⁰·, u⁰·) of frame 1's vectors.
+            for j in 0..3 {
+                let m = match i {
+                    T => 0.0,
+                    U => -d[V][j],
+                    _ => d[U][j],
+                };
+                r.h[i][3 + j] = m * ic - g0[i] * c1[j];
+            }
+        }
+        r
+    }
+
     /// Frame 0's vector `a` times frame 1's vector `b`.
     #[inline(always)]
     fn product(&self, a: usize, b: usize) -> HD<6> {
