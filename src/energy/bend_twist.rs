@@ -8,7 +8,7 @@
 //! returns to the 11 stencil variables. The energies are still reported apart, bending under
 //! [`Category::Bend`] and twisting under [`Category::Twist`].
 
-use super::bend::{Bend, STENCIL_MAP};
+use super::bend::{expand_stencil, Bend, STENCIL_MAP};
 use super::bend_twist_outer::{add_linear_square, add_rotated_bend};
 use super::twist::Twist;
 use super::{Category, Term};
@@ -108,6 +108,6 @@ impl Term<11> for BendTwist {
                 self.composed(dots.binormal_projections(), r, theta)
             }
         };
-        super::expand(&STENCIL_MAP, &outer)
+        expand_stencil(&outer)
     }
 }
