@@ -86,8 +86,8 @@ impl Term<11> for BendTwist {
     fn edge(&self) -> Option<usize> {
         Some(self.bend.edges[0])
     }
-    /// At a committed state (where Newton assembles) the frames' products and their
-    /// derivatives come in closed form ([`CommittedPair`]); elsewhere the frames are
+    /// At a committed state (where Newton assembles) the frames' products, the reference twist
+    /// and their derivatives come in closed form ([`CommittedPair`]); elsewhere the frames are
     /// differentiated by hyper-dual arithmetic.
     fn derivatives(&self, st: &State, x: &[f64; 11]) -> HD<11> {
         let y = super::reduce(&STENCIL_MAP, x);

@@ -175,8 +175,11 @@ impl TermVisitor for Assemble<'_, '_> {
                 gradient_kind(terms, st, free, rollers, out, local)
             }
             Some(s) => {
-                let local = self.buffers.results(2 * kind + 1);
-                hessian_kind(terms, &s.0[kind], st, free, rollers, out, local)
+                let local = self.buffers.results::<Vec<HD<N>>>(2 * kind + 1);
+                local.resize_with(2, Vec::new);
+                let (a, b) = local.split_at_mut(1);
+                let kind = (terms, &s.0[kind][..]);
+                hessian_kind(kind, st, free, rollers, out, (&mut a[0], &mut b[0]))
             }
         };
     }
@@ -249,44 +252,76 @@ fn gradient_kind<const N: usize, E: Term<N>>(
     energy
 }
 
+/// The Hessian of one term kind (`slots`: its part of the slot map). Each block's scatter
+/// runs beside the next block's derivatives (`rayon::join`; `locals` holds both blocks'
+/// results): the scatter is serial, to keep every sum in one order, and on two threads it
+/// would otherwise leave one idle.
 fn hessian_kind<const N: usize, E: Term<N>>(
-    terms: &[E],
-    slots: &[u32],
+    (terms, slots): (&[E], &[u32]),
     st: &State,
     free: &[u32],
     rollers: Option<&Rollers>,
     out: &mut Assembly,
-    local: &mut Vec<HD<N>>,
+    (mut cur, mut next): (&mut Vec<HD<N>>, &mut Vec<HD<N>>),
 ) -> f64 {
     let np = N * (N + 1) / 2;
+    let eval = |t: &E| t.derivatives(st, &t.gather(&st.q));
+    let mut blocks = terms.chunks(BLOCK).enumerate().peekable();
+    if let Some(&(_, first)) = blocks.peek() {
+        evaluate(first, cur, eval);
+    }
     let mut energy = 0.0;
-    for (b, block) in terms.chunks(BLOCK).enumerate() {
-        evaluate(block, local, |t: &E| t.derivatives(st, &t.gather(&st.q)));
-        for (k, (t, full)) in block.iter().zip(local.iter()).enumerate() {
-            energy += full.v;
-            let v = t.vars();
-            let projected = rollers.filter(|p| p.touches(v)).map(|p| p.project(v, full));
-            let r = projected.as_ref().unwrap_or(full);
-            scatter_gradient(v, &r.g, &full.g, free, out);
-            let h = &mut out.hess.as_mut().expect("Hessian output").values;
-            let s = &slots[(b * BLOCK + k) * np..(b * BLOCK + k + 1) * np];
-            let mut p = 0;
-            for i in 0..N {
-                for j in i..N {
-                    let slot = s[p];
-                    p += 1;
-                    if slot != FIXED {
-                        let mut val = r.h[i][j];
-                        // The same free variable twice in one term: (i,j) and (j,i) both land
-                        // on the diagonal.
-                        if i != j && free[v[i]] == free[v[j]] {
-                            val *= 2.0;
-                        }
-                        h[slot as usize] += val;
+    while let Some((b, block)) = blocks.next() {
+        let following = blocks.peek().map(|&(_, f)| f);
+        let s = &slots[b * BLOCK * np..(b * BLOCK + block.len()) * np];
+        let local = &*cur;
+        let energy = &mut energy;
+        let mut scatter = || scatter_hessian(block, local, s, free, rollers, (out, energy));
+        match following {
+            Some(f) => {
+                rayon::join(scatter, || evaluate(f, next, eval));
+            }
+            None => scatter(),
+        }
+        std::mem::swap(&mut cur, &mut next);
+    }
+    energy
+}
+
+/// Adds one block's energies, gradients and Hessians (`local`, in the order of `block`) to the
+/// output.
+fn scatter_hessian<const N: usize, E: Term<N>>(
+    block: &[E],
+    local: &[HD<N>],
+    slots: &[u32],
+    free: &[u32],
+    rollers: Option<&Rollers>,
+    (out, energy): (&mut Assembly, &mut f64),
+) {
+    let np = N * (N + 1) / 2;
+    for (k, (t, full)) in block.iter().zip(local).enumerate() {
+        *energy += full.v;
+        let v = t.vars();
+        let projected = rollers.filter(|p| p.touches(v)).map(|p| p.project(v, full));
+        let r = projected.as_ref().unwrap_or(full);
+        scatter_gradient(v, &r.g, &full.g, free, out);
+        let h = &mut out.hess.as_mut().expect("Hessian output").values;
+        let s = &slots[k * np..(k + 1) * np];
+        let mut p = 0;
+        for i in 0..N {
+            for j in i..N {
+                let slot = s[p];
+                p += 1;
+                if slot != FIXED {
+                    let mut val = r.h[i][j];
+                    // The same free variable twice in one term: (i,j) and (j,i) both land
+                    // on the diagonal.
+                    if i != j && free[v[i]] == free[v[j]] {
+                        val *= 2.0;
                     }
+                    h[slot as usize] += val;
                 }
             }
         }
     }
-    energy
 }
