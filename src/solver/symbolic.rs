@@ -352,7 +352,9 @@ fn permute(
 }
 
 /// The upper-triangle `pattern` with unknown i renumbered `rank[i]`, stored as the triangle
-/// `side` (rows sorted within each column), and each entry's position in it.
+/// `side` (rows sorted within each column), and each entry's position in it. Two counting
+/// passes, by row and then by column, leave each column's rows in order without a sort (the
+/// sort of each column's rows, by keys scattered over the entries, was a third of the time).
 fn renumbered(
     pattern: &SymbolicSparseColMat<usize>,
     rank: &[usize],
@@ -362,6 +364,7 @@ fn renumbered(
     let (cp, ri) = (pattern.col_ptr(), pattern.row_idx());
     let nnz = ri.len();
     let mut at = Vec::with_capacity(nnz);
+    let mut by_row = vec![0usize; n + 1];
     let mut start = vec![0usize; n + 1];
     for c in 0..n {
         for &r in &ri[cp[c]..cp[c + 1]] {
@@ -373,31 +376,31 @@ fn renumbered(
                 (hi, lo)
             };
             at.push((row, col));
+            by_row[row + 1] += 1;
             start[col + 1] += 1;
         }
     }
     for c in 0..n {
+        by_row[c + 1] += by_row[c];
         start[c + 1] += start[c];
     }
-    let mut order = vec![0usize; nnz];
+    // The entries by row (row-major order), then dealt to their columns in that order.
+    let mut row_major = vec![0usize; nnz];
+    for (k, &(row, _)) in at.iter().enumerate() {
+        row_major[by_row[row]] = k;
+        by_row[row] += 1;
+    }
+    drop(by_row);
     let mut fill = start.clone();
-    for (k, &(_, col)) in at.iter().enumerate() {
-        order[fill[col]] = k;
-        fill[col] += 1;
-    }
-    drop(fill);
-    for c in 0..n {
-        order[start[c]..start[c + 1]].sort_unstable_by_key(|&k| at[k].0);
-    }
     let mut of_upper = vec![0usize; nnz];
-    let rows: Vec<usize> = order
-        .iter()
-        .enumerate()
-        .map(|(p, &k)| {
-            of_upper[k] = p;
-            at[k].0
-        })
-        .collect();
+    let mut rows = vec![0usize; nnz];
+    for &k in &row_major {
+        let (row, col) = at[k];
+        let p = fill[col];
+        fill[col] += 1;
+        rows[p] = row;
+        of_upper[k] = p;
+    }
     (
         SymbolicSparseColMat::new_checked(n, n, start, None, rows),
         of_upper,
@@ -516,6 +519,41 @@ mod tests {
             flops += (c * c) as f64;
         }
         assert_eq!(factor_size(&pattern, &order), Some((nnz, flops)));
+    }
+
+    /// The renumbered triangle holds every entry once, at the position it reports, with rows
+    /// increasing within each column, on both sides of a scrambled grid.
+    #[test]
+    fn renumbered_keeps_every_entry_in_sorted_columns() {
+        let m = 9;
+        let n = m * m;
+        let (pairs, _) = crate::solver::ordering::grid_graph(m);
+        let (pattern, _) = upper_pattern(n, &pairs);
+        let rank: Vec<usize> = (0..n).map(|k| (7 * k + 3) % n).collect();
+        let (cp, ri) = (pattern.col_ptr(), pattern.row_idx());
+        for side in [Side::Upper, Side::Lower] {
+            let (out, of_upper) = renumbered(&pattern, &rank, side);
+            let (ocp, ori) = (out.col_ptr(), out.row_idx());
+            assert_eq!(ori.len(), ri.len());
+            for c in 0..n {
+                assert!(ori[ocp[c]..ocp[c + 1]].windows(2).all(|w| w[0] < w[1]));
+            }
+            let mut seen = vec![false; ri.len()];
+            for c in 0..n {
+                for e in cp[c]..cp[c + 1] {
+                    let (a, b) = (rank[ri[e]], rank[c]);
+                    let (row, col) = match side {
+                        Side::Upper => (a.min(b), a.max(b)),
+                        Side::Lower => (a.max(b), a.min(b)),
+                    };
+                    let p = of_upper[e];
+                    assert!(!seen[p]);
+                    seen[p] = true;
+                    assert_eq!(ori[p], row);
+                    assert!(ocp[col] <= p && p < ocp[col + 1]);
+                }
+            }
+        }
     }
 
     /// `Auto` keeps the dissection only when its flops are under `AUTO_FLOPS_RATIO` of AMD's,
