@@ -8,6 +8,9 @@
 //! the smaller boundary (those with a neighbour on the other side), order both halves
 //! recursively and the separator last.
 
+use std::sync::atomic::Ordering::Relaxed;
+use std::sync::atomic::{AtomicU32, AtomicU8};
+
 use faer::sparse::SymbolicSparseColMat;
 
 use super::linalg::SparseCholesky;
@@ -82,34 +85,41 @@ fn dissection<I: Iterator<Item = (usize, usize)>>(
             fill[c] += 1;
         }
     }
-    let mut d = Dissection {
+    let d = Dissection {
         points,
         start,
         adj,
-        side: vec![0; n],
-        stamp: vec![0; n],
-        calls: 0,
-        order: Vec::with_capacity(n),
+        side: (0..n).map(|_| AtomicU8::new(0)).collect(),
+        stamp: (0..n).map(|_| AtomicU32::new(0)).collect(),
+        calls: AtomicU32::new(0),
     };
-    d.dissect((0..n).collect());
-    d.order
+    let mut order = vec![0; n];
+    d.dissect((0..n).collect(), &mut order);
+    order
 }
+
+/// Parts at least this large are dissected beside their sibling (`rayon::join`).
+const PARALLEL_PART: usize = 4096;
 
 struct Dissection<'a> {
     points: &'a [[f64; 3]],
     start: Vec<usize>,
     adj: Vec<usize>,
     /// 1 or 2: the half of the current split an unknown is in (valid where `stamp` matches).
-    side: Vec<u8>,
-    stamp: Vec<u32>,
-    calls: u32,
-    order: Vec<usize>,
+    /// Sibling parts run in parallel on disjoint unknowns; a part reads the marks of the other's
+    /// unknowns only across its boundary, and those never carry its own split's stamp, so
+    /// relaxed atomics suffice and the order does not depend on the timing.
+    side: Vec<AtomicU8>,
+    stamp: Vec<AtomicU32>,
+    calls: AtomicU32,
 }
 
 impl Dissection<'_> {
-    fn dissect(&mut self, mut ids: Vec<usize>) {
+    /// Orders the unknowns `ids` into `out` (of the same length): each half, then the
+    /// separator.
+    fn dissect(&self, mut ids: Vec<usize>, out: &mut [usize]) {
         if ids.len() <= LEAF {
-            self.order.extend(ids);
+            out.copy_from_slice(&ids);
             return;
         }
         let axis = self.longest_axis(&ids);
@@ -130,21 +140,21 @@ impl Dissection<'_> {
                 .then(ka[2].total_cmp(&kb[2]))
                 .then(a.cmp(&b))
         });
-        self.calls += 1;
-        let call = self.calls;
+        let call = self.calls.fetch_add(1, Relaxed) + 1;
         for (k, &i) in ids.iter().enumerate() {
-            self.stamp[i] = call;
-            self.side[i] = if k < mid { 1 } else { 2 };
+            self.stamp[i].store(call, Relaxed);
+            self.side[i].store(if k < mid { 1 } else { 2 }, Relaxed);
         }
         // Each side's boundary: its unknowns coupled to the other side.
-        let on_boundary = |s: &Self, i: usize| {
-            s.adj[s.start[i]..s.start[i + 1]]
+        let on_boundary = |i: usize| {
+            let own = self.side[i].load(Relaxed);
+            self.adj[self.start[i]..self.start[i + 1]]
                 .iter()
-                .any(|&j| s.stamp[j] == call && s.side[j] != s.side[i])
+                .any(|&j| self.stamp[j].load(Relaxed) == call && self.side[j].load(Relaxed) != own)
         };
         let (mut left, mut right, mut sep_l, mut sep_r) = (vec![], vec![], vec![], vec![]);
         for (k, &i) in ids.iter().enumerate() {
-            match (k < mid, on_boundary(self, i)) {
+            match (k < mid, on_boundary(i)) {
                 (true, true) => sep_l.push(i),
                 (true, false) => left.push(i),
                 (false, true) => sep_r.push(i),
@@ -160,14 +170,22 @@ impl Dissection<'_> {
         };
         if left.is_empty() || right.is_empty() {
             // No progress (a clique or coincident points): stop splitting.
-            self.order.extend(left);
-            self.order.extend(right);
-            self.order.extend(separator);
+            let (a, rest) = out.split_at_mut(left.len());
+            let (b, c) = rest.split_at_mut(right.len());
+            a.copy_from_slice(&left);
+            b.copy_from_slice(&right);
+            c.copy_from_slice(&separator);
             return;
         }
-        self.dissect(left);
-        self.dissect(right);
-        self.order.extend(separator);
+        let (l_out, rest) = out.split_at_mut(left.len());
+        let (r_out, s_out) = rest.split_at_mut(right.len());
+        s_out.copy_from_slice(&separator);
+        if left.len() + right.len() >= PARALLEL_PART {
+            rayon::join(|| self.dissect(left, l_out), || self.dissect(right, r_out));
+        } else {
+            self.dissect(left, l_out);
+            self.dissect(right, r_out);
+        }
     }
 
     fn longest_axis(&self, ids: &[usize]) -> usize {
@@ -278,6 +296,23 @@ pub(crate) fn grid_graph(m: usize) -> (Vec<(usize, usize)>, Vec<[f64; 3]>) {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Sibling parts are dissected in parallel: the order is the same on one and on two
+    /// threads (a grid large enough for parallel parts).
+    #[test]
+    fn dissection_does_not_depend_on_the_thread_count() {
+        let m = 100;
+        let (pairs, pts) = grid_graph(m);
+        let on = |threads: usize| {
+            rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap()
+                .install(|| nested_dissection(m * m, &pairs, &pts))
+        };
+        assert!(m * m >= 2 * PARALLEL_PART);
+        assert_eq!(on(1), on(2));
+    }
 
     /// A 2-D grid Laplacian: the order is a permutation, and each separator splits the grid
     /// (no unknown ordered before the separator of its part is coupled across it).
