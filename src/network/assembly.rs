@@ -253,9 +253,9 @@ fn gradient_kind<const N: usize, E: Term<N>>(
 }
 
 /// The Hessian of one term kind (`slots`: its part of the slot map). Each block's scatter
-/// runs beside the next block's derivatives (`rayon::join`; `locals` holds both blocks'
-/// results): the scatter is serial, to keep every sum in one order, and on two threads it
-/// would otherwise leave one idle.
+/// runs beside the next block's derivatives (`rayon::join`; `cur` and `next` hold the two
+/// blocks' results): the scatter is serial, to keep every sum in one order, and on two threads
+/// it would otherwise leave one idle.
 fn hessian_kind<const N: usize, E: Term<N>>(
     (terms, slots): (&[E], &[u32]),
     st: &State,

@@ -353,8 +353,8 @@ fn permute(
 
 /// The upper-triangle `pattern` with unknown i renumbered `rank[i]`, stored as the triangle
 /// `side` (rows sorted within each column), and each entry's position in it. Two counting
-/// passes, by row and then by column, leave each column's rows in order without a sort (the
-/// sort of each column's rows, by keys scattered over the entries, was a third of the time).
+/// passes, by row and then by column, leave each column's rows in order without sorting them
+/// by keys scattered over the entries.
 fn renumbered(
     pattern: &SymbolicSparseColMat<usize>,
     rank: &[usize],
