@@ -8,7 +8,7 @@
 //! [`estimate`] from the built network, with the factor's non-zeros counted exactly by the
 //! symbolic analysis the solver will run.
 
-use super::model::Model;
+use super::model::{Model, FIXED};
 use super::Network;
 use crate::energy::registry::TermVisitor;
 use crate::energy::Term;
@@ -208,5 +208,45 @@ pub fn check_network(
     if e.bytes > limit {
         return Err(refusal(scene, &e.describe(), limit));
     }
+    check_slot_range(scene, e.factor.hessian_nnz)?;
     Ok(e)
+}
+
+/// Refuses a Hessian with more non-zeros than the slot map's 32-bit indices hold
+/// (`assembly::HessianSlots`, [`FIXED`] reserved): they would wrap silently, whatever memory
+/// the machine allows.
+fn check_slot_range(scene: &Scene, hessian_nnz: usize) -> Result<(), FieldError> {
+    if hessian_nnz < FIXED as usize {
+        return Ok(());
+    }
+    let (i, field) = driving_field(scene);
+    Err(FieldError::new(
+        "rods",
+        i,
+        field,
+        format!(
+            "the scene is too large for rodnet: {hessian_nnz} Hessian non-zeros, its slot map \
+             indexes fewer than {FIXED} (this rod has the most nodes; reduce its `{field}`)"
+        ),
+    ))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// A Hessian past the slot map's indices is refused at the rod that drives the size, one
+    /// below them is not.
+    #[test]
+    fn a_hessian_past_the_slot_indices_is_refused() {
+        let text = include_str!("../../networks/extreme/nitinol_cross.ron");
+        let scene = crate::scene::parse("nitinol_cross.ron", text).unwrap();
+        assert!(check_slot_range(&scene, FIXED as usize - 1).is_ok());
+        let e = check_slot_range(&scene, FIXED as usize).unwrap_err();
+        let text = format!("{e:?}");
+        assert!(
+            text.contains("slot map") && text.contains("subdivide"),
+            "{text}"
+        );
+    }
 }
