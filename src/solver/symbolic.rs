@@ -486,16 +486,28 @@ mod tests {
     use super::*;
     use crate::solver::ordering::AUTO_FLOPS_RATIO;
 
+    /// An m × m grid's unknowns, pairs and pattern, and a scrambled permutation of them.
+    fn scrambled_grid(
+        m: usize,
+    ) -> (
+        usize,
+        Vec<(usize, usize)>,
+        SymbolicSparseColMat<usize>,
+        Vec<usize>,
+    ) {
+        let n = m * m;
+        let (pairs, _) = crate::solver::ordering::grid_graph(m);
+        let (pattern, _) = upper_pattern(n, &pairs);
+        let order = (0..n).map(|k| (7 * k + 3) % n).collect();
+        (n, pairs, pattern, order)
+    }
+
     /// The factor's non-zeros and flops from the elimination tree's column counts, against
     /// elimination by hand (each eliminated unknown joins its remaining neighbours), on a grid
     /// in a scrambled order.
     #[test]
     fn factor_size_counts_the_fill_of_an_elimination() {
-        let m = 6;
-        let n = m * m;
-        let (pairs, _) = crate::solver::ordering::grid_graph(m);
-        let (pattern, _) = upper_pattern(n, &pairs);
-        let order: Vec<usize> = (0..n).map(|k| (7 * k + 3) % n).collect();
+        let (n, pairs, pattern, order) = scrambled_grid(6);
         let mut adj = vec![std::collections::BTreeSet::new(); n];
         for &(r, c) in &pairs {
             if r != c {
@@ -525,11 +537,7 @@ mod tests {
     /// increasing within each column, on both sides of a scrambled grid.
     #[test]
     fn renumbered_keeps_every_entry_in_sorted_columns() {
-        let m = 9;
-        let n = m * m;
-        let (pairs, _) = crate::solver::ordering::grid_graph(m);
-        let (pattern, _) = upper_pattern(n, &pairs);
-        let rank: Vec<usize> = (0..n).map(|k| (7 * k + 3) % n).collect();
+        let (n, _, pattern, rank) = scrambled_grid(9);
         let (cp, ri) = (pattern.col_ptr(), pattern.row_idx());
         for side in [Side::Upper, Side::Lower] {
             let (out, of_upper) = renumbered(&pattern, &rank, side);
