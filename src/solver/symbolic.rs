@@ -486,15 +486,16 @@ mod tests {
     use super::*;
     use crate::solver::ordering::AUTO_FLOPS_RATIO;
 
-    /// An m × m grid's unknowns, pairs and pattern, and a scrambled permutation of them.
-    fn scrambled_grid(
-        m: usize,
-    ) -> (
+    /// Unknowns, pairs, pattern and a permutation.
+    type ScrambledGrid = (
         usize,
         Vec<(usize, usize)>,
         SymbolicSparseColMat<usize>,
         Vec<usize>,
-    ) {
+    );
+
+    /// An m × m grid's unknowns, pairs and pattern, and a scrambled permutation of them.
+    fn scrambled_grid(m: usize) -> ScrambledGrid {
         let n = m * m;
         let (pairs, _) = crate::solver::ordering::grid_graph(m);
         let (pattern, _) = upper_pattern(n, &pairs);
