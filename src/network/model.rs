@@ -573,7 +573,7 @@ impl Model {
 }
 
 /// The most categories one kind of term reports ([`Term::CATEGORIES`]).
-const MAX_CATEGORIES: usize = 2;
+pub(super) const MAX_CATEGORIES: usize = 2;
 
 /// Terms (or edges) per block of a parallel sweep: energies are summed per block in parallel
 /// and the blocks' sums added in order, so the total does not depend on the number of threads;

@@ -5,6 +5,8 @@
 use std::any::Any;
 use std::sync::{Mutex, MutexGuard};
 
+use super::model::MAX_CATEGORIES;
+
 /// Not state: a clone starts with empty buffers.
 #[derive(Default)]
 pub struct Scratch(Mutex<Buffers>);
@@ -14,7 +16,7 @@ pub struct Buffers {
     /// (twist slot, reference twist) pairs of a commit.
     pub remembered: Vec<(usize, f64)>,
     /// Energies (by category) of the blocks of one term kind, summed in order.
-    pub energy_blocks: Vec<[f64; 2]>,
+    pub energy_blocks: Vec<[f64; MAX_CATEGORIES]>,
     /// Per-term results, one buffer per slot (term kind and derivative order).
     results: Vec<Option<Box<dyn Any + Send>>>,
 }

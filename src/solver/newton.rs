@@ -285,8 +285,7 @@ impl Newton {
             }
             prev_energy = last_energy;
             last_energy = e0;
-            let model = shift == 0.0 && !self.qp_used;
-            let curves = self.corrections(p, shift, model);
+            let curves = self.corrections(p, shift);
             let mut small_step = false;
             last_step = f64::INFINITY;
             match self.search(p, (e0, shift, res), curves) {
@@ -332,6 +331,12 @@ impl Newton {
         let singular = self.near_singular(&gauges);
         self.report.zero_modes = 0;
         !singular || self.gauge_modes_only(p)
+    }
+
+    /// Whether the current step is Newton's own on the unshifted Hessian, without constraint
+    /// forces: its quadratic model holds, and the energy's gradient is the residual.
+    pub(super) fn on_newton_model(&self, shift: f64) -> bool {
+        shift == 0.0 && !self.qp_used
     }
 
     /// The largest component of the step `d` in the unknowns' scales (edge lengths, radians).
@@ -394,14 +399,14 @@ impl Newton {
         let slope: f64 = self.g.iter().zip(&self.d).map(|(a, b)| a * b).sum();
         // Near convergence on a positive definite Hessian the full Newton step may be judged by
         // its residual when the energy cannot resolve its decrease (see `line_search`).
-        let trust = (shift == 0.0 && res < TRUSTED_RESIDUAL && !self.qp_used).then_some(res);
+        let trust = (self.on_newton_model(shift) && res < TRUSTED_RESIDUAL).then_some(res);
         let search = Search {
             d: &self.d,
             first: curves.0.then_some(&self.c[..]),
             e0,
             slope,
             constrained: self.qp.is_some(),
-            model_decrease: (shift == 0.0 && !self.qp_used).then_some(0.5 * slope.abs()),
+            model_decrease: self.on_newton_model(shift).then_some(0.5 * slope.abs()),
         };
         let repairs = p.repairs_lengths();
         let (chol, f) = (&mut self.chol, &mut self.f_repair[..]);
@@ -442,7 +447,7 @@ impl Newton {
         // Only where the Hessian is positive definite (a convex model: reducing the residual
         // approaches a minimum, not a saddle) and the residual is small. (With constraint forces
         // the plain gradient is no residual: never trusted.)
-        let trusted = shift == 0.0 && res < TRUSTED_RESIDUAL && !self.qp_used;
+        let trusted = self.on_newton_model(shift) && res < TRUSTED_RESIDUAL;
         let failed =
             || Outcome::Failed(format!("line search failed (relative residual {res:.3e})"));
         if trusted && res_trial < 0.9 * res && p.max_step(&self.trial) >= 1.0 {

@@ -89,15 +89,13 @@ impl Newton {
     /// excess force still dominated the residual there, and `buckle_toward` on the hemisphere
     /// footprint took 19 iterations instead of 17.)
     ///
-    /// With `defer` (an unshifted Hessian and Newton's model: the line search may skip the
-    /// second curve, see `line_search`), the geometric correction behind the energy-optimal one
-    /// is not made here but returned as [`Second::Deferred`], for the line search to make if it
-    /// tries that curve.
+    /// On Newton's own step (`on_newton_model`: the line search may skip the second curve, see
+    /// `line_search`), the geometric correction behind the energy-optimal one is not made here
+    /// but returned as [`Second::Deferred`], for the line search to make if it tries that curve.
     pub(super) fn corrections<P: NewtonProblem>(
         &mut self,
         p: &mut P,
         shift: f64,
-        defer: bool,
     ) -> (bool, Second) {
         if p.excess_force(&self.d, (&self.d, 1.0), &mut self.c) == 0.0 {
             return (false, Second::Absent);
@@ -110,7 +108,7 @@ impl Newton {
         let w = &self.weights;
         let norm = |v: &[f64]| v.iter().zip(w).map(|(x, w)| w * x * x).sum::<f64>();
         let stretch = norm(&self.c) <= norm(&self.d);
-        if stretch && defer {
+        if stretch && self.on_newton_model(shift) {
             return (true, Second::Deferred);
         }
         let buf = if stretch { &mut self.c2 } else { &mut self.c };
