@@ -16,7 +16,12 @@ pub(super) enum Saddle {
 }
 
 impl Newton {
-    /// Factors H + τI with the smallest τ of the sequence 0, τ₀, 10τ₀, … that succeeds.
+    /// Factors H + τW with the first τ of the sequence 0, τ₀, gτ₀, g²τ₀, … that succeeds.
+    /// After a shifted iteration, τ₀ is a tenth of its shift and g = 10. Without that memory,
+    /// τ₀ is the floor, 1e-10 of the diagonal scale, and the magnitude is unknown: g = 100
+    /// finds a shift in about half the failed factorizations, overshooting by at most 100×
+    /// instead of 10×, which the memory's start at τ/10 corrects on the next indefinite
+    /// iteration (docs/performance.md, sixteenth session).
     ///
     /// The unshifted attempt is made at every iteration, even while it keeps failing: skipping
     /// it would save a factorization per indefinite iteration, but the shift would then linger
@@ -35,14 +40,17 @@ impl Newton {
             return Some(0.0);
         }
         let scale = self.scaled_diagonal().max(f64::MIN_POSITIVE);
-        let mut tau = (1e-10 * scale).max(0.1 * self.shift_memory);
+        let floor = 1e-10 * scale;
+        let remembered = 0.1 * self.shift_memory;
+        let growth = if remembered > floor { 10.0 } else { 100.0 };
+        let mut tau = floor.max(remembered);
         while tau < 1e12 * scale {
             self.report.factorizations += 1;
             if self.chol.factor_weighted(tau, &self.weights).is_ok() {
                 self.shift_memory = tau;
                 return Some(tau);
             }
-            tau *= 10.0;
+            tau *= growth;
         }
         None
     }
@@ -140,5 +148,54 @@ impl Newton {
             alpha *= 0.5;
         }
         Saddle::NoDecrease
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::solver::linalg::SparseCholesky;
+
+    /// A Newton solver on diag(1, 1, h).
+    fn diagonal(h: f64) -> Newton {
+        let pairs = [(0, 0), (1, 1), (2, 2)];
+        let (mut chol, slots) = SparseCholesky::new(3, &pairs);
+        for (slot, v) in slots.into_iter().zip([1.0, 1.0, h]) {
+            chol.values[slot] = v;
+        }
+        Newton::new(chol, None, 3)
+    }
+
+    /// The factorizations and the shift of one regularized factorization of diag(1, 1, h).
+    fn ladder(newton: &mut Newton, h: f64) -> (usize, Option<f64>) {
+        let slot = newton.chol.values.len() - 1;
+        newton.chol.values[slot] = h;
+        let before = newton.report.factorizations;
+        let shift = newton.factor_regularized();
+        (newton.report.factorizations - before, shift)
+    }
+
+    /// Without memory the shift climbs ×100 from 1e-10 of the diagonal scale; after a shifted
+    /// factorization it starts from a tenth of that shift and climbs ×10.
+    #[test]
+    fn the_shift_climbs_by_hundreds_without_memory_and_by_tens_with_it() {
+        let close = |s: Option<f64>, t: f64| (s.unwrap() / t - 1.0).abs() < 1e-9;
+        let mut newton = diagonal(1.0);
+        assert_eq!(ladder(&mut newton, 1.0), (1, Some(0.0)));
+        // Needs τ > 3e-7: 1e-10, 1e-8 fail, 1e-6 holds.
+        let (facts, shift) = ladder(&mut newton, -3e-7);
+        assert!(facts == 4 && close(shift, 1e-6), "{facts} {shift:?}");
+        // From memory: 1e-7 fails, 1e-6 holds.
+        let (facts, shift) = ladder(&mut newton, -3e-7);
+        assert!(facts == 3 && close(shift, 1e-6), "{facts} {shift:?}");
+        // Needs τ > 3e-6: 1e-7, 1e-6 fail, 1e-5 holds.
+        let (facts, shift) = ladder(&mut newton, -3e-6);
+        assert!(facts == 4 && close(shift, 1e-5), "{facts} {shift:?}");
+        // Positive definite: unshifted, the memory decays to 1e-6, 1e-7, … 1e-10 and below.
+        for _ in 0..5 {
+            assert_eq!(ladder(&mut newton, 1.0), (1, Some(0.0)));
+        }
+        let (facts, shift) = ladder(&mut newton, -3e-7);
+        assert!(facts == 4 && close(shift, 1e-6), "{facts} {shift:?}");
     }
 }
