@@ -43,8 +43,10 @@ pub struct SparseCholesky {
     l: Vec<f64>,
     factor_mem: MemBuffer,
     solve_mem: MemBuffer,
-    /// Scratch of the supernodal solve (a supernode's pattern rows).
-    solve_tmp: Vec<f64>,
+    /// Scratch of the supernodal solve.
+    solve_scratch: supernodal_solve::Scratch,
+    /// The supernodes' division for a solve on two threads, if it pays.
+    solve_split: Option<supernodal_solve::Split>,
     factored: bool,
     /// LDLᵀ factor values, its input in the permuted pattern, and scratch, allocated on first
     /// use (arc-length continuation).
@@ -87,7 +89,11 @@ impl SparseCholesky {
             MemBuffer::new(sym.factorize_numeric_llt_scratch::<f64>(par, Default::default()));
         let solve_mem = MemBuffer::new(sym.solve_in_place_scratch::<f64>(1, par));
         let l = vec![0.0; sym.len_val()];
-        let solve_tmp = Vec::with_capacity(supernodal_solve::scratch_len(sym));
+        let solve_split = match sym.raw() {
+            SymbolicCholeskyRaw::Supernodal(s) => supernodal_solve::Split::new(s),
+            SymbolicCholeskyRaw::Simplicial(_) => None,
+        };
+        let solve_scratch = supernodal_solve::Scratch::new(sym, solve_split.as_ref());
         let nnz = symbolic.hessian_nnz();
         SparseCholesky {
             n: symbolic.pattern.ncols(),
@@ -99,7 +105,8 @@ impl SparseCholesky {
             l,
             factor_mem,
             solve_mem,
-            solve_tmp,
+            solve_scratch,
+            solve_split,
             factored: false,
             ldlt: Vec::new(),
             ldlt_input: Vec::new(),
@@ -255,7 +262,8 @@ impl SparseCholesky {
                 .iter()
                 .zip(b.iter_mut())
                 .for_each(|(&i, b)| *b = rhs[i]);
-            supernodal_solve::solve_in_place(sym, &self.l, b, &mut self.solve_tmp);
+            let split = self.solve_split.as_ref();
+            supernodal_solve::solve_in_place(sym, &self.l, b, split, &mut self.solve_scratch);
             order.iter().zip(b.iter()).for_each(|(&i, b)| rhs[i] = *b);
         } else {
             self.solve_with_faer(rhs);
@@ -397,7 +405,18 @@ mod tests {
     /// of nodes with three unknowns each, coupled to their neighbours (a rod network's shape).
     #[test]
     fn supernodal_solve_is_faers() {
-        let (w, dofs) = (24, 3);
+        solve_grid_against_faer(24, false);
+    }
+
+    /// As [`supernodal_solve_is_faers`], with the solve split for two threads (on a factor
+    /// below the size where the split pays).
+    #[test]
+    fn split_supernodal_solve_is_faers() {
+        solve_grid_against_faer(24, true);
+    }
+
+    fn solve_grid_against_faer(w: usize, split: bool) {
+        let dofs = 3;
         let n = w * w * dofs;
         let node = |i: usize, j: usize| (i * w + j) * dofs;
         let mut pairs = vec![];
@@ -428,6 +447,17 @@ mod tests {
             s.symbolic.cholesky.raw(),
             SymbolicCholeskyRaw::Supernodal(_)
         ));
+        let SymbolicCholeskyRaw::Supernodal(sym) = s.symbolic.cholesky.raw() else {
+            unreachable!()
+        };
+        s.solve_split = if split {
+            supernodal_solve::Split::from_values(sym, 0)
+        } else {
+            None
+        };
+        assert_eq!(s.solve_split.is_some(), split);
+        s.solve_scratch =
+            supernodal_solve::Scratch::new(&s.symbolic.cholesky, s.solve_split.as_ref());
         for (k, v) in vals.iter().enumerate() {
             s.values[slot[k]] += v;
         }

@@ -11,26 +11,285 @@ use faer::sparse::linalg::cholesky::supernodal::SymbolicSupernodalCholesky;
 use faer::sparse::linalg::cholesky::SymbolicCholeskyRaw;
 
 /// Solves L Lᵀ x = b in place (`x` holds b, in the elimination order) with the supernodal factor
-/// values `l` of `sym`; `tmp` is scratch of any length (grown as needed).
+/// values `l` of `sym`; `tmp` is scratch of any length (grown as needed). With a `split`, the
+/// two groups of subtrees are solved in parallel (`scratch`: their second scratch and the
+/// second group's updates of the top rows).
 pub fn solve_in_place(
     sym: &SymbolicSupernodalCholesky<usize>,
     l: &[f64],
     x: &mut [f64],
-    tmp: &mut Vec<f64>,
+    split: Option<&Split>,
+    scratch: &mut Scratch,
 ) {
-    forward(sym, l, x, tmp);
-    backward(sym, l, x, tmp);
+    match split {
+        None => {
+            let n = x.len();
+            forward(sym, l, 0..sym.n_supernodes(), whole(x, n), &mut scratch.tmp);
+            backward(
+                sym,
+                l,
+                0..sym.n_supernodes(),
+                whole_ref(x, n),
+                &mut scratch.tmp,
+            );
+        }
+        Some(split) => {
+            forward_split(sym, l, x, split, scratch);
+            backward_split(sym, l, x, split, scratch);
+        }
+    }
 }
 
-/// The most pattern rows of one supernode: the scratch [`solve_in_place`] needs (0 for a
-/// simplicial factor).
-pub fn scratch_len(sym: &faer::sparse::linalg::cholesky::SymbolicCholesky<usize>) -> usize {
-    match sym.raw() {
-        SymbolicCholeskyRaw::Supernodal(s) => (0..s.n_supernodes())
+/// Scratch of [`solve_in_place`], kept between solves (no allocation once grown).
+#[derive(Default)]
+pub struct Scratch {
+    tmp: Vec<f64>,
+    tmp2: Vec<f64>,
+    acc: Vec<f64>,
+}
+
+/// Two groups of sibling subtrees of the supernodal elimination tree, for two threads: in the
+/// postorder, supernodes `first..mid` and `mid..top` are the subtrees of the children of
+/// supernode `top` (split between two children), solved in parallel; the others sequentially.
+/// Chosen from the structure alone, so that the arithmetic does not depend on the threads.
+#[derive(Debug, Clone, PartialEq, Eq)]
+pub struct Split {
+    first: usize,
+    mid: usize,
+    top: usize,
+}
+
+/// Factor values below which a solve stays on one thread: on the hemisphere's factors the
+/// split solve was slower below about a million values (docs/performance.md).
+const PARALLEL_VALUES: usize = 1_200_000;
+/// Least share of the factor's values in the smaller group for a split to pay.
+const SMALLER_GROUP: f64 = 0.2;
+
+impl Split {
+    /// The split that balances the two groups best, if the factor has `PARALLEL_VALUES` and
+    /// one puts at least `SMALLER_GROUP` of them in each (none if the supernodes are not in
+    /// postorder).
+    pub fn new(sym: &SymbolicSupernodalCholesky<usize>) -> Option<Split> {
+        Self::from_values(sym, PARALLEL_VALUES)
+    }
+
+    /// [`Self::new`] for factors of at least `least` values.
+    pub(super) fn from_values(
+        sym: &SymbolicSupernodalCholesky<usize>,
+        least: usize,
+    ) -> Option<Split> {
+        let ns = sym.n_supernodes();
+        let vp = sym.col_ptr_for_val();
+        let total = vp[ns];
+        if total < least {
+            return None;
+        }
+        let parent = supernode_parents(sym);
+        // First descendant of each supernode; subtrees must be the ranges first..=s.
+        let mut first: Vec<usize> = (0..ns).collect();
+        let mut size = vec![1usize; ns];
+        for s in 0..ns {
+            if let Some(p) = parent[s] {
+                if p <= s {
+                    return None;
+                }
+                first[p] = first[p].min(first[s]);
+                size[p] += size[s];
+            }
+        }
+        if (0..ns).any(|s| s + 1 - first[s] != size[s]) {
+            return None;
+        }
+        let work = |a: usize, b: usize| vp[b] - vp[a];
+        let mut best: Option<(usize, Split)> = None;
+        // A split after child c of `top`: the children's subtrees are consecutive ranges.
+        for (c, p) in parent.iter().enumerate() {
+            let Some(top) = *p else { continue };
+            let (f, mid) = (first[top], c + 1);
+            if mid == top || f == mid {
+                continue;
+            }
+            let smaller = work(f, mid).min(work(mid, top));
+            if best.as_ref().is_none_or(|(w, _)| smaller > *w) {
+                best = Some((smaller, Split { first: f, mid, top }));
+            }
+        }
+        best.filter(|(w, _)| *w as f64 >= SMALLER_GROUP * total as f64)
+            .map(|(_, s)| s)
+    }
+}
+
+/// Parent of each supernode in the elimination tree: the supernode of its first pattern row.
+fn supernode_parents(sym: &SymbolicSupernodalCholesky<usize>) -> Vec<Option<usize>> {
+    let ns = sym.n_supernodes();
+    let (begin, end) = (sym.supernode_begin(), sym.supernode_end());
+    let mut of_col = vec![0; end.last().copied().unwrap_or(0)];
+    for s in 0..ns {
+        of_col[begin[s]..end[s]].iter_mut().for_each(|c| *c = s);
+    }
+    (0..ns)
+        .map(|s| sym.supernode(s).pattern().iter().min().map(|&r| of_col[r]))
+        .collect()
+}
+
+/// The unknowns a range of supernodes writes: its own columns `own` (starting at column `off`)
+/// and the rows from `top_off` on, in `top`.
+struct Part<'a> {
+    own: &'a mut [f64],
+    off: usize,
+    top: &'a mut [f64],
+    top_off: usize,
+}
+
+impl Part<'_> {
+    fn at(&mut self, r: usize) -> &mut f64 {
+        if r < self.top_off {
+            &mut self.own[r - self.off]
+        } else {
+            &mut self.top[r - self.top_off]
+        }
+    }
+}
+
+/// As [`Part`], with the top rows only read (the backward solve).
+struct PartRef<'a> {
+    own: &'a mut [f64],
+    off: usize,
+    top: &'a [f64],
+    top_off: usize,
+}
+
+impl PartRef<'_> {
+    fn at(&self, r: usize) -> f64 {
+        if r < self.top_off {
+            self.own[r - self.off]
+        } else {
+            self.top[r - self.top_off]
+        }
+    }
+}
+
+fn whole(x: &mut [f64], n: usize) -> Part<'_> {
+    Part {
+        own: x,
+        off: 0,
+        top: &mut [],
+        top_off: n,
+    }
+}
+
+fn whole_ref(x: &mut [f64], n: usize) -> PartRef<'_> {
+    PartRef {
+        own: x,
+        off: 0,
+        top: &[],
+        top_off: n,
+    }
+}
+
+/// The forward solve: the supernodes before the groups, the groups in parallel (the second
+/// one's updates of the top rows summed apart, then added), then the top.
+fn forward_split(
+    sym: &SymbolicSupernodalCholesky<usize>,
+    l: &[f64],
+    x: &mut [f64],
+    split: &Split,
+    scratch: &mut Scratch,
+) {
+    let (n, ns) = (x.len(), sym.n_supernodes());
+    let begin = sym.supernode_begin();
+    let (c0, c1, c2) = (begin[split.first], begin[split.mid], begin[split.top]);
+    forward(sym, l, 0..split.first, whole(x, n), &mut scratch.tmp);
+    let (left, rest) = x[c0..].split_at_mut(c1 - c0);
+    let (right, top) = rest.split_at_mut(c2 - c1);
+    let Scratch { tmp, tmp2, acc } = scratch;
+    acc.clear();
+    acc.resize(top.len(), 0.0);
+    rayon::join(
+        || {
+            let part = Part {
+                own: left,
+                off: c0,
+                top,
+                top_off: c2,
+            };
+            forward(sym, l, split.first..split.mid, part, tmp);
+        },
+        || {
+            let part = Part {
+                own: right,
+                off: c1,
+                top: acc,
+                top_off: c2,
+            };
+            forward(sym, l, split.mid..split.top, part, tmp2);
+        },
+    );
+    x[c2..]
+        .iter_mut()
+        .zip(acc.iter())
+        .for_each(|(x, a)| *x += a);
+    forward(sym, l, split.top..ns, whole(x, n), &mut scratch.tmp);
+}
+
+/// The backward solve: the top, the groups in parallel (they only read the top), then the
+/// supernodes before them.
+fn backward_split(
+    sym: &SymbolicSupernodalCholesky<usize>,
+    l: &[f64],
+    x: &mut [f64],
+    split: &Split,
+    scratch: &mut Scratch,
+) {
+    let (n, ns) = (x.len(), sym.n_supernodes());
+    let begin = sym.supernode_begin();
+    let (c0, c1, c2) = (begin[split.first], begin[split.mid], begin[split.top]);
+    backward(sym, l, split.top..ns, whole_ref(x, n), &mut scratch.tmp);
+    let (left, rest) = x[c0..].split_at_mut(c1 - c0);
+    let (right, top) = rest.split_at_mut(c2 - c1);
+    let (top, tmp, tmp2) = (&*top, &mut scratch.tmp, &mut scratch.tmp2);
+    rayon::join(
+        || {
+            let part = PartRef {
+                own: left,
+                off: c0,
+                top,
+                top_off: c2,
+            };
+            backward(sym, l, split.first..split.mid, part, tmp);
+        },
+        || {
+            let part = PartRef {
+                own: right,
+                off: c1,
+                top,
+                top_off: c2,
+            };
+            backward(sym, l, split.mid..split.top, part, tmp2);
+        },
+    );
+    backward(sym, l, 0..split.first, whole_ref(x, n), &mut scratch.tmp);
+}
+
+impl Scratch {
+    /// Scratch grown once for every solve with `sym` (and `split`).
+    pub fn new(
+        sym: &faer::sparse::linalg::cholesky::SymbolicCholesky<usize>,
+        split: Option<&Split>,
+    ) -> Scratch {
+        let SymbolicCholeskyRaw::Supernodal(s) = sym.raw() else {
+            return Scratch::default();
+        };
+        let widest = (0..s.n_supernodes())
             .map(|k| s.supernode(k).pattern().len())
             .max()
-            .unwrap_or(0),
-        SymbolicCholeskyRaw::Simplicial(_) => 0,
+            .unwrap_or(0);
+        let top = split.map_or(0, |p| sym.nrows() - s.supernode_begin()[p.top]);
+        Scratch {
+            tmp: Vec::with_capacity(widest),
+            tmp2: Vec::with_capacity(if split.is_some() { widest } else { 0 }),
+            acc: Vec::with_capacity(top),
+        }
     }
 }
 
@@ -65,20 +324,25 @@ fn block<'a>(sym: &'a SymbolicSupernodalCholesky<usize>, l: &'a [f64], s: usize)
     }
 }
 
-/// L y = b: each supernode's columns, then its pattern rows updated once from the sums.
-fn forward(sym: &SymbolicSupernodalCholesky<usize>, l: &[f64], x: &mut [f64], tmp: &mut Vec<f64>) {
-    for s in 0..sym.n_supernodes() {
+/// L y = b over the supernodes `range`: each supernode's columns, then its pattern rows updated
+/// once from the sums.
+fn forward(
+    sym: &SymbolicSupernodalCholesky<usize>,
+    l: &[f64],
+    range: std::ops::Range<usize>,
+    mut x: Part<'_>,
+    tmp: &mut Vec<f64>,
+) {
+    for s in range {
         let b = block(sym, l, s);
+        let own = &mut x.own[b.start - x.off..b.start - x.off + b.ncols];
         tmp.clear();
         tmp.resize(b.pattern.len(), 0.0);
         for j in 0..b.ncols {
             let (diag, below) = b.column(j);
-            let xj = x[b.start + j] / diag[j];
-            x[b.start + j] = xj;
-            for (xi, lij) in x[b.start + j + 1..b.start + b.ncols]
-                .iter_mut()
-                .zip(&diag[j + 1..])
-            {
+            let xj = own[j] / diag[j];
+            own[j] = xj;
+            for (xi, lij) in own[j + 1..].iter_mut().zip(&diag[j + 1..]) {
                 *xi -= lij * xj;
             }
             for (t, lij) in tmp.iter_mut().zip(below) {
@@ -86,22 +350,30 @@ fn forward(sym: &SymbolicSupernodalCholesky<usize>, l: &[f64], x: &mut [f64], tm
             }
         }
         for (&r, t) in b.pattern.iter().zip(tmp.iter()) {
-            x[r] -= t;
+            *x.at(r) -= t;
         }
     }
 }
 
-/// Lᵀ x = y: supernodes in reverse, the pattern's values gathered once per supernode.
-fn backward(sym: &SymbolicSupernodalCholesky<usize>, l: &[f64], x: &mut [f64], tmp: &mut Vec<f64>) {
-    for s in (0..sym.n_supernodes()).rev() {
+/// Lᵀ x = y over the supernodes `range`, in reverse: the pattern's values gathered once per
+/// supernode.
+fn backward(
+    sym: &SymbolicSupernodalCholesky<usize>,
+    l: &[f64],
+    range: std::ops::Range<usize>,
+    x: PartRef<'_>,
+    tmp: &mut Vec<f64>,
+) {
+    for s in range.rev() {
         let b = block(sym, l, s);
         tmp.clear();
-        tmp.extend(b.pattern.iter().map(|&r| x[r]));
+        tmp.extend(b.pattern.iter().map(|&r| x.at(r)));
+        let own = &mut x.own[b.start - x.off..b.start - x.off + b.ncols];
         for j in (0..b.ncols).rev() {
             let (diag, below) = b.column(j);
-            let inside = dot(&diag[j + 1..], &x[b.start + j + 1..b.start + b.ncols]);
+            let inside = dot(&diag[j + 1..], &own[j + 1..]);
             let outside = dot(below, tmp);
-            x[b.start + j] = (x[b.start + j] - inside - outside) / diag[j];
+            own[j] = (own[j] - inside - outside) / diag[j];
         }
     }
 }
