@@ -119,6 +119,14 @@ impl Split {
     }
 }
 
+impl Split {
+    /// First column of the first group, of the second group and of the top.
+    fn columns(&self, sym: &SymbolicSupernodalCholesky<usize>) -> [usize; 3] {
+        let begin = sym.supernode_begin();
+        [begin[self.first], begin[self.mid], begin[self.top]]
+    }
+}
+
 /// Parent of each supernode in the elimination tree: the supernode of its first pattern row.
 fn supernode_parents(sym: &SymbolicSupernodalCholesky<usize>) -> Vec<Option<usize>> {
     let ns = sym.n_supernodes();
@@ -187,6 +195,33 @@ fn whole_ref(x: &mut [f64], n: usize) -> PartRef<'_> {
     }
 }
 
+/// A group's unknowns: its columns from `off`, the top rows from `top_off`.
+fn part<'a>(own: &'a mut [f64], off: usize, top: &'a mut [f64], top_off: usize) -> Part<'a> {
+    Part {
+        own,
+        off,
+        top,
+        top_off,
+    }
+}
+
+/// [`part`], reading the top rows.
+fn part_ref<'a>(own: &'a mut [f64], off: usize, top: &'a [f64], top_off: usize) -> PartRef<'a> {
+    PartRef {
+        own,
+        off,
+        top,
+        top_off,
+    }
+}
+
+/// `x` cut after `a` and after `a + b` values.
+fn three(x: &mut [f64], a: usize, b: usize) -> (&mut [f64], &mut [f64], &mut [f64]) {
+    let (left, rest) = x.split_at_mut(a);
+    let (right, top) = rest.split_at_mut(b);
+    (left, right, top)
+}
+
 /// The forward solve: the supernodes before the groups, the groups in parallel (the second
 /// one's updates of the top rows summed apart, then added), then the top.
 fn forward_split(
@@ -197,33 +232,15 @@ fn forward_split(
     scratch: &mut Scratch,
 ) {
     let (n, ns) = (x.len(), sym.n_supernodes());
-    let begin = sym.supernode_begin();
-    let (c0, c1, c2) = (begin[split.first], begin[split.mid], begin[split.top]);
+    let [c0, c1, c2] = split.columns(sym);
     forward(sym, l, 0..split.first, whole(x, n), &mut scratch.tmp);
-    let (left, rest) = x[c0..].split_at_mut(c1 - c0);
-    let (right, top) = rest.split_at_mut(c2 - c1);
+    let (left, right, top) = three(&mut x[c0..], c1 - c0, c2 - c1);
     let Scratch { tmp, tmp2, acc } = scratch;
     acc.clear();
     acc.resize(top.len(), 0.0);
     rayon::join(
-        || {
-            let part = Part {
-                own: left,
-                off: c0,
-                top,
-                top_off: c2,
-            };
-            forward(sym, l, split.first..split.mid, part, tmp);
-        },
-        || {
-            let part = Part {
-                own: right,
-                off: c1,
-                top: acc,
-                top_off: c2,
-            };
-            forward(sym, l, split.mid..split.top, part, tmp2);
-        },
+        || forward(sym, l, split.first..split.mid, part(left, c0, top, c2), tmp),
+        || forward(sym, l, split.mid..split.top, part(right, c1, acc, c2), tmp2),
     );
     x[c2..]
         .iter_mut()
@@ -242,30 +259,28 @@ fn backward_split(
     scratch: &mut Scratch,
 ) {
     let (n, ns) = (x.len(), sym.n_supernodes());
-    let begin = sym.supernode_begin();
-    let (c0, c1, c2) = (begin[split.first], begin[split.mid], begin[split.top]);
+    let [c0, c1, c2] = split.columns(sym);
     backward(sym, l, split.top..ns, whole_ref(x, n), &mut scratch.tmp);
-    let (left, rest) = x[c0..].split_at_mut(c1 - c0);
-    let (right, top) = rest.split_at_mut(c2 - c1);
+    let (left, right, top) = three(&mut x[c0..], c1 - c0, c2 - c1);
     let (top, tmp, tmp2) = (&*top, &mut scratch.tmp, &mut scratch.tmp2);
     rayon::join(
         || {
-            let part = PartRef {
-                own: left,
-                off: c0,
-                top,
-                top_off: c2,
-            };
-            backward(sym, l, split.first..split.mid, part, tmp);
+            backward(
+                sym,
+                l,
+                split.first..split.mid,
+                part_ref(left, c0, top, c2),
+                tmp,
+            )
         },
         || {
-            let part = PartRef {
-                own: right,
-                off: c1,
-                top,
-                top_off: c2,
-            };
-            backward(sym, l, split.mid..split.top, part, tmp2);
+            backward(
+                sym,
+                l,
+                split.mid..split.top,
+                part_ref(right, c1, top, c2),
+                tmp2,
+            )
         },
     );
     backward(sym, l, 0..split.first, whole_ref(x, n), &mut scratch.tmp);
