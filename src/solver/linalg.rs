@@ -475,5 +475,24 @@ mod tests {
         for (a, b) in ax.iter().zip(&b) {
             assert!((a - b).abs() < 1e-12, "{a} vs {b}");
         }
+        // The same bits on one thread and on two.
+        let on = |threads: usize, s: &mut SparseCholesky| {
+            let pool = rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap();
+            let mut x = b.clone();
+            pool.install(|| s.solve(&mut x));
+            x
+        };
+        let (one, two) = (on(1, &mut s), on(2, &mut s));
+        assert!(one
+            .iter()
+            .zip(&two)
+            .all(|(x, y)| x.to_bits() == y.to_bits()));
+        assert!(one
+            .iter()
+            .zip(&own)
+            .all(|(x, y)| x.to_bits() == y.to_bits()));
     }
 }
