@@ -242,8 +242,9 @@ fn analyse_uncached(
         |order| factor_size(&pattern, order),
     )?;
     let (permuted, cholesky) = permute(&pattern, &diag, elimination)?;
-    // What the comparison held besides the two orders: one renumbered pattern with its
-    // entries' positions, its column counts and elimination tree.
+    // What the comparison held besides the two orders, counted as if resident with the
+    // factor: two words per entry (a renumbered pattern is made from lists of that size,
+    // freed before the factor exists), its column counts and elimination tree.
     let compared_bytes = 8 * (2 * pattern.row_idx().len() + 4 * n) as u64;
     Some(Symbolic {
         pattern,
@@ -283,7 +284,7 @@ fn amd_order(pattern: &SymbolicSparseColMat<usize>) -> Option<Vec<usize>> {
 /// overflow.
 fn factor_size(pattern: &SymbolicSparseColMat<usize>, order: &[usize]) -> Option<(usize, f64)> {
     let n = pattern.ncols();
-    let (upper, _) = renumbered(pattern, &inverse(order), Side::Upper);
+    let upper = renumbered_pattern(pattern, &inverse(order), Side::Upper);
     let mut etree = vec![0isize; n];
     let mut counts = vec![0usize; n];
     let mut mem = MemBuffer::try_new(simplicial::prefactorize_symbolic_cholesky_scratch::<usize>(
@@ -352,13 +353,33 @@ fn permute(
 }
 
 /// The upper-triangle `pattern` with unknown i renumbered `rank[i]`, stored as the triangle
-/// `side` (rows sorted within each column), and each entry's position in it. Two counting
-/// passes, by row and then by column, leave each column's rows in order without sorting them
-/// by keys scattered over the entries.
+/// `side` (rows sorted within each column), and each entry's position in it.
 fn renumbered(
     pattern: &SymbolicSparseColMat<usize>,
     rank: &[usize],
     side: Side,
+) -> (SymbolicSparseColMat<usize>, Vec<usize>) {
+    renumber(pattern, rank, side, true)
+}
+
+/// [`renumbered`] without the positions (the factor size of a candidate order).
+fn renumbered_pattern(
+    pattern: &SymbolicSparseColMat<usize>,
+    rank: &[usize],
+    side: Side,
+) -> SymbolicSparseColMat<usize> {
+    renumber(pattern, rank, side, false).0
+}
+
+/// [`renumbered`], the positions only if `positions` (else empty). Two counting passes, by
+/// row and then by column, leave each column's rows in order without sorting them by keys
+/// scattered over the entries; the entries are dealt to their columns from a row-major list
+/// of (column, entry) read in order.
+fn renumber(
+    pattern: &SymbolicSparseColMat<usize>,
+    rank: &[usize],
+    side: Side,
+    positions: bool,
 ) -> (SymbolicSparseColMat<usize>, Vec<usize>) {
     let n = pattern.ncols();
     let (cp, ri) = (pattern.col_ptr(), pattern.row_idx());
@@ -384,22 +405,27 @@ fn renumbered(
         by_row[c + 1] += by_row[c];
         start[c + 1] += start[c];
     }
-    // The entries by row (row-major order), then dealt to their columns in that order.
-    let mut row_major = vec![0usize; nnz];
-    for (k, &(row, _)) in at.iter().enumerate() {
-        row_major[by_row[row]] = k;
+    let mut row_major = vec![(0usize, 0usize); nnz];
+    for (k, &(row, col)) in at.iter().enumerate() {
+        row_major[by_row[row]] = (col, k);
         by_row[row] += 1;
     }
-    drop(by_row);
+    drop(at);
+    // by_row[r] is now the end of row r.
     let mut fill = start.clone();
-    let mut of_upper = vec![0usize; nnz];
+    let mut of_upper = vec![0usize; if positions { nnz } else { 0 }];
     let mut rows = vec![0usize; nnz];
-    for &k in &row_major {
-        let (row, col) = at[k];
-        let p = fill[col];
-        fill[col] += 1;
-        rows[p] = row;
-        of_upper[k] = p;
+    let mut begin = 0;
+    for (row, &end) in by_row[..n].iter().enumerate() {
+        for &(col, k) in &row_major[begin..end] {
+            let p = fill[col];
+            fill[col] += 1;
+            rows[p] = row;
+            if positions {
+                of_upper[k] = p;
+            }
+        }
+        begin = end;
     }
     (
         SymbolicSparseColMat::new_checked(n, n, start, None, rows),
@@ -544,6 +570,8 @@ mod tests {
             let (out, of_upper) = renumbered(&pattern, &rank, side);
             let (ocp, ori) = (out.col_ptr(), out.row_idx());
             assert_eq!(ori.len(), ri.len());
+            let lean = renumbered_pattern(&pattern, &rank, side);
+            assert_eq!((lean.col_ptr(), lean.row_idx()), (ocp, ori));
             for c in 0..n {
                 assert!(ori[ocp[c]..ocp[c + 1]].windows(2).all(|w| w[0] < w[1]));
             }
