@@ -11,9 +11,8 @@ use faer::sparse::linalg::cholesky::supernodal::SymbolicSupernodalCholesky;
 use faer::sparse::linalg::cholesky::SymbolicCholeskyRaw;
 
 /// Solves L Lᵀ x = b in place (`x` holds b, in the elimination order) with the supernodal factor
-/// values `l` of `sym`; `tmp` is scratch of any length (grown as needed). With a `split`, the
-/// two groups of subtrees are solved in parallel (`scratch`: their second scratch and the
-/// second group's updates of the top rows).
+/// values `l` of `sym`, in `scratch` (see [`Scratch::new`]). With a `split`, its two groups of
+/// subtrees are solved in parallel.
 pub fn solve_in_place(
     sym: &SymbolicSupernodalCholesky<usize>,
     l: &[f64],
@@ -43,8 +42,11 @@ pub fn solve_in_place(
 /// Scratch of [`solve_in_place`], kept between solves (no allocation once grown).
 #[derive(Default)]
 pub struct Scratch {
+    /// A supernode's pattern rows (the first group's, with a split).
     tmp: Vec<f64>,
+    /// The second group's.
     tmp2: Vec<f64>,
+    /// The second group's updates of the top rows (forward solve).
     acc: Vec<f64>,
 }
 
