@@ -4,9 +4,11 @@
 
 use std::alloc::{GlobalAlloc, Layout, System};
 use std::sync::atomic::{AtomicUsize, Ordering};
+use std::sync::Mutex;
 
 use rodnet::pipeline::{settings_of, solve_scene};
 use rodnet::scene::load;
+use rodnet::solver::linalg::SparseCholesky;
 
 struct Counting;
 
@@ -28,6 +30,9 @@ unsafe impl GlobalAlloc for Counting {
 
 #[global_allocator]
 static GLOBAL: Counting = Counting;
+
+/// The tests count the same global allocations: one at a time.
+static SERIAL: Mutex<()> = Mutex::new(());
 
 /// Progress reports recorded without allocating: (iterations so far, allocations so far).
 const REPORTS: usize = 4096;
@@ -86,6 +91,7 @@ fn allocations_per_iteration(name: &str) -> (Vec<usize>, usize, usize) {
 /// size (before, every iteration allocated about 14 times).
 #[test]
 fn newton_iterations_do_not_allocate() {
+    let _one_at_a_time = SERIAL.lock().unwrap_or_else(|e| e.into_inner());
     for name in [
         "hemisphere_lift_n4",
         "buckled_strip",
@@ -106,4 +112,57 @@ fn newton_iterations_do_not_allocate() {
             "{name}: {substeps} sub-steps, {retries} retries, allocations per iteration {counts:?}"
         );
     }
+}
+
+/// Solves with a factor large enough to be split over two threads (`supernodal_solve.rs`) do
+/// not allocate: their scratch is made with the factorization object. A 2-D grid of nodes with three unknowns
+/// each, coupled to their eight neighbours (a rod network's shape).
+#[test]
+fn split_solves_do_not_allocate() {
+    let _one_at_a_time = SERIAL.lock().unwrap_or_else(|e| e.into_inner());
+    let (w, dofs) = (120, 3);
+    let n = w * w * dofs;
+    let node = |i: usize, j: usize| (i * w + j) * dofs;
+    let mut pairs = vec![];
+    for i in 0..w {
+        for j in 0..w {
+            for a in 0..dofs {
+                for b in a..dofs {
+                    pairs.push((node(i, j) + a, node(i, j) + b));
+                }
+            }
+            for (di, dj) in [(0, 1), (1, 0), (1, 1)] {
+                if i + di < w && j + dj < w {
+                    for a in 0..dofs {
+                        for b in 0..dofs {
+                            let (p, q) = (node(i, j) + a, node(i + di, j + dj) + b);
+                            pairs.push((p.min(q), p.max(q)));
+                        }
+                    }
+                }
+            }
+        }
+    }
+    let (mut chol, slots) = SparseCholesky::new(n, &pairs);
+    for (k, &(r, c)) in pairs.iter().enumerate() {
+        chol.values[slots[k]] += if r == c { 20.0 } else { -0.5 };
+    }
+    chol.factor(0.0).unwrap();
+    assert!(
+        chol.solves_in_parallel(),
+        "{} factor values: too few to split",
+        chol.factor_nnz()
+    );
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(1)
+        .build()
+        .unwrap();
+    let mut x: Vec<f64> = (0..n).map(|i| (i as f64 * 0.37).sin()).collect();
+    pool.install(|| {
+        let before = ALLOCATIONS.load(Ordering::SeqCst);
+        for _ in 0..3 {
+            chol.solve(&mut x);
+        }
+        assert_eq!(ALLOCATIONS.load(Ordering::SeqCst), before);
+    });
 }

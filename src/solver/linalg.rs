@@ -124,6 +124,11 @@ impl SparseCholesky {
         self.l.len()
     }
 
+    /// Whether solves split the factor over two threads (`supernodal_solve::Split`).
+    pub fn solves_in_parallel(&self) -> bool {
+        self.solve_split.is_some()
+    }
+
     /// Column pointers of the stored upper triangle (CSC).
     pub fn col_ptr(&self) -> &[usize] {
         self.symbolic.pattern.col_ptr()
