@@ -127,7 +127,8 @@ fn analysis(sym: &SymbolicCholesky<usize>) -> Analysis {
         .unaligned_bytes_required()
         + sym
             .solve_in_place_scratch::<f64>(1, Par::Seq)
-            .unaligned_bytes_required();
+            .unaligned_bytes_required()
+        + super::supernodal_solve::scratch_bytes(sym) as usize;
     let factor_nnz = sym.len_val();
     Analysis {
         factor_nnz,

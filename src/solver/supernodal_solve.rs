@@ -23,12 +23,18 @@ pub fn solve_in_place(
     match split {
         None => {
             let n = x.len();
-            forward(sym, l, 0..sym.n_supernodes(), whole(x, n), &mut scratch.tmp);
+            forward(
+                sym,
+                l,
+                0..sym.n_supernodes(),
+                part(x, 0, &mut [], n),
+                &mut scratch.tmp,
+            );
             backward(
                 sym,
                 l,
                 0..sym.n_supernodes(),
-                whole_ref(x, n),
+                part_ref(x, 0, &[], n),
                 &mut scratch.tmp,
             );
         }
@@ -119,9 +125,7 @@ impl Split {
         best.filter(|(w, _)| *w as f64 >= SMALLER_GROUP * total as f64)
             .map(|(_, s)| s)
     }
-}
 
-impl Split {
     /// First column of the first group, of the second group and of the top.
     fn columns(&self, sym: &SymbolicSupernodalCholesky<usize>) -> [usize; 3] {
         let begin = sym.supernode_begin();
@@ -179,25 +183,8 @@ impl PartRef<'_> {
     }
 }
 
-fn whole(x: &mut [f64], n: usize) -> Part<'_> {
-    Part {
-        own: x,
-        off: 0,
-        top: &mut [],
-        top_off: n,
-    }
-}
-
-fn whole_ref(x: &mut [f64], n: usize) -> PartRef<'_> {
-    PartRef {
-        own: x,
-        off: 0,
-        top: &[],
-        top_off: n,
-    }
-}
-
-/// A group's unknowns: its columns from `off`, the top rows from `top_off`.
+/// A group's unknowns: its columns from `off`, the top rows from `top_off` (all of `x`:
+/// `part(x, 0, &mut [], n)`).
 fn part<'a>(own: &'a mut [f64], off: usize, top: &'a mut [f64], top_off: usize) -> Part<'a> {
     Part {
         own,
@@ -235,7 +222,13 @@ fn forward_split(
 ) {
     let (n, ns) = (x.len(), sym.n_supernodes());
     let [c0, c1, c2] = split.columns(sym);
-    forward(sym, l, 0..split.first, whole(x, n), &mut scratch.tmp);
+    forward(
+        sym,
+        l,
+        0..split.first,
+        part(x, 0, &mut [], n),
+        &mut scratch.tmp,
+    );
     let (left, right, top) = three(&mut x[c0..], c1 - c0, c2 - c1);
     let Scratch { tmp, tmp2, acc } = scratch;
     acc.clear();
@@ -248,7 +241,13 @@ fn forward_split(
         .iter_mut()
         .zip(acc.iter())
         .for_each(|(x, a)| *x += a);
-    forward(sym, l, split.top..ns, whole(x, n), &mut scratch.tmp);
+    forward(
+        sym,
+        l,
+        split.top..ns,
+        part(x, 0, &mut [], n),
+        &mut scratch.tmp,
+    );
 }
 
 /// The backward solve: the top, the groups in parallel (they only read the top), then the
@@ -262,7 +261,13 @@ fn backward_split(
 ) {
     let (n, ns) = (x.len(), sym.n_supernodes());
     let [c0, c1, c2] = split.columns(sym);
-    backward(sym, l, split.top..ns, whole_ref(x, n), &mut scratch.tmp);
+    backward(
+        sym,
+        l,
+        split.top..ns,
+        part_ref(x, 0, &[], n),
+        &mut scratch.tmp,
+    );
     let (left, right, top) = three(&mut x[c0..], c1 - c0, c2 - c1);
     let (top, tmp, tmp2) = (&*top, &mut scratch.tmp, &mut scratch.tmp2);
     rayon::join(
@@ -285,7 +290,29 @@ fn backward_split(
             )
         },
     );
-    backward(sym, l, 0..split.first, whole_ref(x, n), &mut scratch.tmp);
+    backward(
+        sym,
+        l,
+        0..split.first,
+        part_ref(x, 0, &[], n),
+        &mut scratch.tmp,
+    );
+}
+
+/// Most pattern rows of one supernode.
+fn widest(s: &SymbolicSupernodalCholesky<usize>) -> usize {
+    (0..s.n_supernodes())
+        .map(|k| s.supernode(k).pattern().len())
+        .max()
+        .unwrap_or(0)
+}
+
+/// Bytes of the [`Scratch`] of a factorization object of `sym`, at most (with a split).
+pub fn scratch_bytes(sym: &faer::sparse::linalg::cholesky::SymbolicCholesky<usize>) -> u64 {
+    match sym.raw() {
+        SymbolicCholeskyRaw::Supernodal(s) => 8 * (2 * widest(s) + sym.nrows()) as u64,
+        SymbolicCholeskyRaw::Simplicial(_) => 0,
+    }
 }
 
 impl Scratch {
@@ -297,10 +324,7 @@ impl Scratch {
         let SymbolicCholeskyRaw::Supernodal(s) = sym.raw() else {
             return Scratch::default();
         };
-        let widest = (0..s.n_supernodes())
-            .map(|k| s.supernode(k).pattern().len())
-            .max()
-            .unwrap_or(0);
+        let widest = widest(s);
         let top = split.map_or(0, |p| sym.nrows() - s.supernode_begin()[p.top]);
         Scratch {
             tmp: Vec::with_capacity(widest),
