@@ -53,18 +53,22 @@ pub fn time_limit() -> Option<f64> {
 
 /// Builds a validated scene, refused (as a [`FieldError`] on the field that drives its size)
 /// when the solve would need more than the memory limit: first from the scene's sizes, before
-/// anything is allocated, then from the built network with the factor's fill counted exactly.
+/// anything is allocated, then from the built network with the factor's fill counted exactly;
+/// and refused at the field that causes it when its round-off floor makes a meaningful answer
+/// impossible (`network::floor`).
 pub fn build_within_limit(
     scene: &Scene,
     ordering: crate::solver::Ordering,
 ) -> Result<Network, FieldError> {
     let limit = memory_limit();
-    if limit == u64::MAX {
-        return build(scene);
+    if limit != u64::MAX {
+        budget::check_scene(scene, limit)?;
     }
-    budget::check_scene(scene, limit)?;
-    let network = build(scene)?;
-    budget::check_network(scene, &network, limit, ordering)?;
+    let mut network = build(scene)?;
+    if limit != u64::MAX {
+        budget::check_network(scene, &network, limit, ordering)?;
+    }
+    crate::network::floor::check(scene, &mut network)?;
     Ok(network)
 }
 
@@ -409,7 +413,7 @@ pub fn indent(
     let Some(node) = sol.network.rod(&rod).and_then(|r| r.vertex_node(vertex)) else {
         return Err(IndentError::At("no such vertex".into()));
     };
-    let position = sol.network.model.position(node);
+    let position = sol.network.model.world_position(node);
     let k = linear_stiffness(&mut sol.network, node, direction);
     let how = Push {
         rod: rod.clone(),

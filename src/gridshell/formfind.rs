@@ -112,7 +112,7 @@ fn cap_path(
 ) -> NewtonReport {
     let mut problem = NetworkProblem::new(&mut network.model);
     let layout = problem.model.layout;
-    let flat: CapNodes = layout.node_positions(&problem.model.state.q).collect();
+    let flat: CapNodes = problem.model.world_positions();
     let ends: Vec<f64> = problem.model.prescribed.iter().map(|p| p.end).collect();
     let steps = if start_cap > 1.0 {
         settings.load_steps.max(1)
@@ -159,7 +159,8 @@ fn cap_path(
             }
             _ => {
                 for (n, p) in pos.iter().enumerate() {
-                    layout.set_position(q, n, *p);
+                    let o = model.origin;
+                    layout.set_position(q, n, [0, 1, 2].map(|k| p[k] - o[k]));
                 }
             }
         }
@@ -222,11 +223,10 @@ fn cap_path(
 /// The straight path's start: the footprint bent onto the cap net of radius `rho`, its ends
 /// then moved by the solver's continuation from there to the scene's targets.
 fn onto_cap(model: &mut Model, rho: f64) {
-    let layout = model.layout;
-    let flat: CapNodes = layout.node_positions(&model.state.q).collect();
+    let flat: CapNodes = model.world_positions();
     let (pos, normals) = on_cap(rho, &flat);
     for (n, p) in pos.iter().enumerate() {
-        layout.set_position(&mut model.state.q, n, *p);
+        model.set_world_position(n, *p);
     }
     turn_frames(model, &|_| [0.0, 0.0, 1.0], &normals);
     for p in &mut model.prescribed {

@@ -37,7 +37,7 @@ pub fn shape_metrics(
     let (mut max_net, mut sum2_net) = (0.0f64, 0.0);
     let mut lowest = f64::INFINITY;
     for (j, c) in network.joints.iter().zip(crossings) {
-        let x = m.position(j.node);
+        let x = m.world_position(j.node);
         lowest = lowest.min(x[2] / r);
         let d = (norm(x) - r) / r;
         max_rad = max_rad.max(d.abs());
@@ -48,7 +48,7 @@ pub fn shape_metrics(
         sum2_net += e * e;
     }
     let apex = (0..network.n_nodes())
-        .map(|n| m.position(n)[2])
+        .map(|n| m.world_position(n)[2])
         .fold(f64::NEG_INFINITY, f64::max)
         / r;
     ShapeMetrics {

@@ -23,7 +23,7 @@ pub fn place(net: &mut Network, rods: &[RodState]) -> Result<(), String> {
     let mut seen: Vec<Option<(usize, [f64; 3])>> = vec![None; layout.n_nodes()];
     let scale = (0..layout.n_nodes())
         .map(|n| {
-            let p = net.model.position(n);
+            let p = net.model.world_position(n);
             p[0].abs().max(p[1].abs()).max(p[2].abs())
         })
         .fold(1e-300, f64::max);
@@ -67,7 +67,8 @@ pub fn place(net: &mut Network, rods: &[RodState]) -> Result<(), String> {
                 }
             }
             seen[n] = Some((ri, *p));
-            layout.set_position(&mut q, n, *p);
+            let o = net.model.origin;
+            layout.set_position(&mut q, n, [0, 1, 2].map(|k| p[k] - o[k]));
         }
         for (&e, &t) in info.edges.iter().zip(&r.twist) {
             if !t.is_finite() {

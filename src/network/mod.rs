@@ -10,6 +10,7 @@ pub mod build;
 pub mod contact;
 pub mod drag;
 pub mod equilibrium;
+pub mod floor;
 pub mod indent;
 pub mod info;
 pub mod initial;
@@ -68,6 +69,6 @@ impl Network {
     /// Current position of input vertex `vertex` of rod `rod`.
     pub fn vertex_position(&self, rod: &str, vertex: usize) -> Option<[f64; 3]> {
         let n = self.rod(rod)?.vertex_node(vertex)?;
-        Some(self.model.position(n))
+        Some(self.model.world_position(n))
     }
 }

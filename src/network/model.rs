@@ -144,6 +144,10 @@ pub struct Model {
     pub rollers: Rollers,
     /// Buffers reused by every assembly and commit, so that Newton iterations do not allocate.
     pub scratch: Scratch,
+    /// Where the origin of the coordinates the model is solved in lies in the scene's own:
+    /// zero, or a point near the centre of a scene far from the origin (`scene::translate`).
+    /// Positions in `q` are relative to it; results are given in the scene's coordinates.
+    pub origin: [f64; 3],
 }
 
 /// The pieces a [`Model`] is made of (everything but the free map, which follows from `fixed`).
@@ -190,6 +194,7 @@ impl Model {
             contact: p.contact,
             rollers: Rollers::new(p.rollers, p.layout.len()),
             scratch: Scratch::default(),
+            origin: [0.0; 3],
         }
     }
 
@@ -219,9 +224,29 @@ impl Model {
         self.layout.kind(v)
     }
 
-    /// Position of node `n`.
+    /// Position of node `n`, in the coordinates the model is solved in (`origin`).
     pub fn position(&self, n: usize) -> [f64; 3] {
         self.layout.position(&self.state.q, n)
+    }
+
+    /// Position of node `n` in the scene's coordinates: what results and restarts hold.
+    pub fn world_position(&self, n: usize) -> [f64; 3] {
+        let p = self.position(n);
+        [0, 1, 2].map(|k| p[k] + self.origin[k])
+    }
+
+    /// Places node `n` at `p`, given in the scene's coordinates.
+    pub fn set_world_position(&mut self, n: usize, p: [f64; 3]) {
+        let o = self.origin;
+        self.layout
+            .set_position(&mut self.state.q, n, [0, 1, 2].map(|k| p[k] - o[k]));
+    }
+
+    /// Every node position in the scene's coordinates.
+    pub fn world_positions(&self) -> Vec<[f64; 3]> {
+        (0..self.layout.n_nodes())
+            .map(|n| self.world_position(n))
+            .collect()
     }
 
     /// Calls `f(kind, category, energy)` for every term kind at the current state, in the order
@@ -431,8 +456,10 @@ impl Model {
 
     /// The rounding error of each free variable (half an ulp of its value, with a fixed
     /// pseudo-random sign): the residual that this perturbation causes is what round-off alone
-    /// produces at the current state (`NetworkProblem::residual_floor`).
-    pub fn rounding_noise(&self, out: &mut [f64]) {
+    /// produces at the current state (`NetworkProblem::residual_floor`). With `by_node`, each
+    /// coordinate of a node is rounded at the size of the node's largest coordinate: a rod lying
+    /// along an axis has exact zeros there now, but not once it moves (`network::floor`).
+    pub fn rounding_noise(&self, out: &mut [f64], by_node: bool) {
         for (v, &f) in self.free.iter().enumerate() {
             if f != FIXED {
                 let sign = if (v.wrapping_mul(2654435761) >> 13) & 1 == 0 {
@@ -440,7 +467,19 @@ impl Model {
                 } else {
                     -1.0
                 };
-                out[f as usize] = sign * 0.5 * f64::EPSILON * self.state.q[v].abs();
+                // An angle is an increment on a stored frame, itself rounded to ε radians.
+                let size = match self.kind(v) {
+                    VarKind::Position if by_node => {
+                        let n = self
+                            .layout
+                            .node_of(v)
+                            .expect("a position belongs to a node");
+                        self.position(n).iter().fold(0.0_f64, |a, x| a.max(x.abs()))
+                    }
+                    VarKind::Position => self.state.q[v].abs(),
+                    VarKind::Angle => self.state.q[v].abs().max(1.0),
+                };
+                out[f as usize] = sign * 0.5 * f64::EPSILON * size;
             }
         }
     }

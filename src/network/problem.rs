@@ -70,6 +70,31 @@ impl<'m> NetworkProblem<'m> {
         }
     }
 
+    /// The relative residual that rounding the free unknowns causes at the current state,
+    /// whose gradient is `grad` (`NewtonProblem::residual_floor`; `by_node`: see
+    /// `Model::rounding_noise`).
+    pub fn rounding_response(&mut self, grad: &[f64], by_node: bool) -> f64 {
+        // Measured, not estimated from stiffnesses: the residual that rounding every free
+        // variable to the nearest double causes. A finely subdivided rod's bending stencils turn a
+        // coordinate's rounding εX into a force of order EI·εX/h³, which grows as N³ and exceeds
+        // the stretch estimate EA·εX/h used before from a few hundred edges per metre on
+        // (docs/design.md). Twice the measured value: one pattern of signs is typical, not worst.
+        // The noise is applied 1024 times larger and the response scaled back (it is linear):
+        // measured at its own size, the difference of two gradients would be as noisy as what it
+        // measures, and decisions against the floor would depend on the last bits.
+        const AMPLIFY: f64 = 1024.0;
+        let n = self.model.n_free;
+        let (mut noise, mut g1) = std::mem::take(&mut self.floor_scratch);
+        noise.resize(n, 0.0);
+        g1.resize(n, 0.0);
+        self.model.rounding_noise(&mut noise, by_node);
+        self.trial_gradient(&noise, AMPLIFY, &mut g1);
+        g1.iter_mut().zip(grad).for_each(|(a, b)| *a -= b);
+        let floor = 2.0 * self.model.relative_residual(&g1) / AMPLIFY;
+        self.floor_scratch = (noise, g1);
+        floor
+    }
+
     /// The adapter of a whole network: mechanisms are then named by rod.
     pub fn of_network(net: &'m mut Network) -> Self {
         let Network {
@@ -257,25 +282,7 @@ impl NewtonProblem for NetworkProblem<'_> {
         }
     }
     fn residual_floor(&mut self, grad: &[f64]) -> f64 {
-        // Measured, not estimated from stiffnesses: the residual that rounding every free
-        // variable to the nearest double causes. A finely subdivided rod's bending stencils turn a
-        // coordinate's rounding εX into a force of order EI·εX/h³, which grows as N³ and exceeds
-        // the stretch estimate EA·εX/h used before from a few hundred edges per metre on
-        // (docs/design.md). Twice the measured value: one pattern of signs is typical, not worst.
-        // The noise is applied 1024 times larger and the response scaled back (it is linear):
-        // measured at its own size, the difference of two gradients would be as noisy as what it
-        // measures, and decisions against the floor would depend on the last bits.
-        const AMPLIFY: f64 = 1024.0;
-        let n = self.model.n_free;
-        let (mut noise, mut g1) = std::mem::take(&mut self.floor_scratch);
-        noise.resize(n, 0.0);
-        g1.resize(n, 0.0);
-        self.model.rounding_noise(&mut noise);
-        self.trial_gradient(&noise, AMPLIFY, &mut g1);
-        g1.iter_mut().zip(grad).for_each(|(a, b)| *a -= b);
-        let floor = 2.0 * self.model.relative_residual(&g1) / AMPLIFY;
-        self.floor_scratch = (noise, g1);
-        floor
+        self.rounding_response(grad, false)
     }
     fn num_free(&self) -> usize {
         self.model.n_free

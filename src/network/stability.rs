@@ -243,7 +243,7 @@ pub fn mode_shape(net: &Network, mode: &[f64], fraction: f64) -> Shape {
         .unwrap_or([0.0; 3]);
     let size = norm(largest);
     if size == 0.0 {
-        return rods_at(net, |n| m.position(n));
+        return rods_at(net, |n| m.world_position(n));
     }
     let (lo, hi) = nodes.fold(
         ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]),
@@ -263,14 +263,14 @@ pub fn mode_shape(net: &Network, mode: &[f64], fraction: f64) -> Shape {
         .unwrap_or(1.0);
     let a = fraction * diagonal / size * dominant.signum();
     rods_at(net, |n| {
-        let (x, d) = (m.position(n), motion(n));
+        let (x, d) = (m.world_position(n), motion(n));
         std::array::from_fn(|k| x[k] + a * d[k])
     })
 }
 
 /// Each rod's points at the network's current state.
 pub fn rods_now(net: &Network) -> Shape {
-    rods_at(net, |n| net.model.position(n))
+    rods_at(net, |n| net.model.world_position(n))
 }
 
 /// The mean rest edge length: the unit that turns edge angles into lengths (1 m without edges).

@@ -67,7 +67,7 @@ fn rod_states(net: &Network) -> Vec<RodState> {
         .iter()
         .map(|r| RodState {
             name: r.name.clone(),
-            points: r.nodes.iter().map(|&n| m.position(n)).collect(),
+            points: r.nodes.iter().map(|&n| m.world_position(n)).collect(),
             twist: r
                 .edges
                 .iter()

@@ -2,6 +2,7 @@
 //! generated from OBJ networks ([`obj_import`]).
 pub mod locate;
 pub mod obj_import;
+pub mod translate;
 pub mod types;
 pub mod validate;
 

@@ -1,5 +1,5 @@
 //! The path from λ = 0 to 1: load steps, each reached through adaptive sub-steps, with Newton
-//! iterations (`newton.rs`) at each. What ends a solve, and how the report says so.
+//! iterations (`newton.rs`) at each. How the report says what ended it: `verdict.rs`.
 
 use std::time::{Duration, Instant};
 
@@ -9,6 +9,7 @@ use super::ordering::factorization;
 use super::problem::NewtonProblem;
 use super::qp::StepQp;
 use super::settings::{ConstraintReport, NewtonReport, NewtonSettings};
+use super::verdict::finish;
 
 /// Newton iterations a continuation sub-step may take before it is retried with a smaller
 /// increment (unless the increment is already minimal).
@@ -369,49 +370,4 @@ fn secant_weights<S>(prev: &[(f64, S)], now: f64, next: f64) -> Vec<f64> {
                 .product()
         })
         .collect()
-}
-
-/// Sets the report's verdict from the outcome that ended the solve.
-fn finish(st: &mut Newton, o: Outcome, (k, steps): (usize, usize), its: usize, s: &NewtonSettings) {
-    let r = &mut st.report;
-    let at = format!("load step {k}/{steps}");
-    match o {
-        Outcome::Converged => r.converged = true,
-        Outcome::AtFloor if s.automatic_tolerance => {
-            r.stopped_at_floor = true;
-            r.converged = true;
-            r.tolerance = r.residual_floor;
-        }
-        Outcome::AtFloor => {
-            r.stopped_at_floor = true;
-            r.message = Some(format!(
-                "stopped at the round-off floor at {at}: relative residual {:.3e} > tolerance \
-                 {:.1e}, but below the floor {:.3e} that rounding the unknowns to doubles \
-                 causes; the state is as close to equilibrium as floating point allows \
-                 (a tolerance above the floor is met)",
-                r.residual, s.tolerance, r.residual_floor
-            ));
-        }
-        Outcome::Budget(msg) => {
-            if msg.starts_with("time limit") {
-                r.stopped = Some("time limit".into());
-            }
-            r.message = Some(format!(
-                "no convergence at {at} within its budget of {} Newton iterations \
-                 ({its} used in this load step, {} in all): {msg}",
-                s.max_iterations, r.iterations
-            ));
-        }
-        Outcome::Mechanism(msg) => {
-            r.message = Some(format!("mechanism: {msg}"));
-            r.mechanism = Some(msg);
-        }
-        Outcome::Failed(msg) => {
-            r.message = Some(format!(
-                "no convergence at {at} ({its} Newton iterations in this load step, {} in all, \
-                 tolerance {:.1e}): {msg}",
-                r.iterations, s.tolerance
-            ));
-        }
-    }
 }

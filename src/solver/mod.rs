@@ -17,6 +17,7 @@ pub mod spectrum;
 mod step;
 mod supernodal_solve;
 pub mod symbolic;
+pub mod verdict;
 
 pub use continuation::{solve, solve_with};
 pub use ordering::Ordering;

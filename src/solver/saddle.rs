@@ -120,6 +120,7 @@ fn converge_at<P: NewtonProblem>(
         report.iterations += 1;
     }
     report.residual_floor = floor;
+    super::verdict::meaningful(&mut report);
     report.seconds = t0.elapsed().as_secs_f64();
     report
 }

@@ -152,8 +152,8 @@ pub struct NewtonReport {
     pub factor_seconds: f64,
     /// Why the solve stopped when it did not converge.
     pub message: Option<String>,
-    /// The solve stopped below the round-off floor with the residual above the tolerance
-    /// (`converged` is then false).
+    /// The solve stopped below the round-off floor with the residual above the tolerance:
+    /// converged to the floor (`verdict.rs`).
     pub stopped_at_floor: bool,
     /// What stopped an unconverged solve early: "time limit".
     pub stopped: Option<String>,

@@ -335,7 +335,7 @@ impl Plan {
     }
 
     fn probe_positions(&self, net: &Network) -> Vec<[f64; 3]> {
-        let at = |n: usize| net.model.position(n);
+        let at = |n: usize| net.model.world_position(n);
         let rods: HashMap<&str, _> = net.rods.iter().map(|r| (r.name.as_str(), r)).collect();
         let joints: HashMap<&str, usize> = net
             .joints

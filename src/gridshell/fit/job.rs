@@ -107,15 +107,14 @@ fn from_the_net(
     surface: &Surface,
 ) -> NewtonReport {
     let model = &mut network.model;
-    let layout = model.layout;
-    let flat: Vec<[f64; 3]> = layout.node_positions(&model.state.q).collect();
+    let flat = model.world_positions();
     let placed: Vec<[f64; 3]> = flat
         .iter()
         .map(|&x| net_point(&fp.net, &fp.plane, x))
         .collect();
     let normals: Vec<[f64; 3]> = placed.iter().map(|&p| surface.closest(p).normal).collect();
     for (n, p) in placed.iter().enumerate() {
-        layout.set_position(&mut model.state.q, n, *p);
+        model.set_world_position(n, *p);
     }
     turn_frames(model, &|_| fp.plane.side, &normals);
     for p in &mut model.prescribed {
@@ -152,7 +151,7 @@ fn net_block_of(network: &Network, fp: &FitFootprint) -> NetBlock {
     let (mut lo, mut hi) = (f64::INFINITY, 0.0f64);
     for (j, &c) in network.joints.iter().zip(&fp.crossings) {
         let crossing = &fp.net.crossings[c];
-        let d = norm(sub(network.model.position(j.node), crossing.point));
+        let d = norm(sub(network.model.world_position(j.node), crossing.point));
         max = max.max(d);
         sum2 += d * d;
         lo = lo.min(crossing.angle);

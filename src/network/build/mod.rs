@@ -28,7 +28,19 @@ use crate::variables::{DofLayout, FrameRef, State};
 
 pub use frames::KINK_ANGLE;
 
+/// Builds the network of a validated scene, about its own centre when it stands far from the
+/// origin (`scene::translate`).
 pub fn build(scene: &Scene) -> Result<Network, FieldError> {
+    let origin = crate::scene::translate::origin(scene);
+    if origin == [0.0; 3] {
+        return build_here(scene);
+    }
+    let mut net = build_here(&scene.translated(origin.map(|x| -x)))?;
+    net.model.origin = origin;
+    Ok(net)
+}
+
+fn build_here(scene: &Scene) -> Result<Network, FieldError> {
     let rest = geometry::Rest::of(scene);
     let joined = frames::join(&rest)?;
     let net = nodes::number(&rest, &joined);

@@ -32,7 +32,7 @@ pub fn from_rest(net: &Network, scene: &Scene) -> f64 {
             "a loaded node without a rest position"
         );
         let x0 = rest[node].unwrap_or([0.0; 3]);
-        let x = m.position(node);
+        let x = m.world_position(node);
         for k in 0..3 {
             e -= lambda * load.force[k] * (x[k] - x0[k]);
         }

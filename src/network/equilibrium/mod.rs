@@ -155,7 +155,7 @@ impl Equilibrium {
             .enumerate()
             .map(|(i, (((r, energy), bending), forces))| RodEquilibrium {
                 name: r.name.clone(),
-                points: r.nodes.iter().map(|&n| m.position(n)).collect(),
+                points: r.nodes.iter().map(|&n| m.world_position(n)).collect(),
                 twist: reported_angles(net, r),
                 length: r.edges.iter().map(|&e| edge_length(net, e)).sum(),
                 energy,
@@ -239,7 +239,7 @@ impl Equilibrium {
             joints: net
                 .joints
                 .iter()
-                .map(|j| (j.name.clone(), m.position(j.node)))
+                .map(|j| (j.name.clone(), m.world_position(j.node)))
                 .collect(),
             reactions,
             loads: applied_loads(net, scene),

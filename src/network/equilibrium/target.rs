@@ -70,7 +70,7 @@ pub fn node_distances(net: &Network, t: &Target) -> Option<Vec<f64>> {
     match t {
         Target::Sphere { center, radius } => Some(
             nodes
-                .map(|n| norm(sub(m.position(n), *center)) - radius)
+                .map(|n| norm(sub(m.world_position(n), *center)) - radius)
                 .collect(),
         ),
         Target::Mesh { surface, path } => {
@@ -82,7 +82,11 @@ pub fn node_distances(net: &Network, t: &Target) -> Option<Vec<f64>> {
                     &loaded
                 }
             };
-            Some(nodes.map(|n| s.signed_distance(m.position(n))).collect())
+            Some(
+                nodes
+                    .map(|n| s.signed_distance(m.world_position(n)))
+                    .collect(),
+            )
         }
     }
 }
@@ -100,12 +104,12 @@ pub fn check(net: &Network, t: &Target) -> Option<TargetCheck> {
             let mut max: f64 = 0.0;
             let mut sum2 = 0.0;
             for &n in &nodes {
-                let d = (norm(sub(m.position(n), *center)) - radius) / radius;
+                let d = (norm(sub(m.world_position(n), *center)) - radius) / radius;
                 max = max.max(d.abs());
                 sum2 += d * d;
             }
             let apex = (0..net.n_nodes())
-                .map(|n| m.position(n)[2] - center[2])
+                .map(|n| m.world_position(n)[2] - center[2])
                 .fold(f64::NEG_INFINITY, f64::max)
                 / radius;
             Some(TargetCheck {
@@ -134,7 +138,7 @@ pub fn check(net: &Network, t: &Target) -> Option<TargetCheck> {
             };
             let (mut max, mut sum2, mut sum) = (0.0f64, 0.0, 0.0);
             for &n in &nodes {
-                let d = s.signed_distance(m.position(n));
+                let d = s.signed_distance(m.world_position(n));
                 max = max.max(d.abs());
                 sum2 += d * d;
                 sum += d;

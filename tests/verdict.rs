@@ -1,0 +1,142 @@
+//! The convergence verdict (issue 36): a floor known before the solve refuses scenes whose
+//! round-off makes a meaningful answer impossible, at the field that causes it; a state whose
+//! residual or floor is too large is never called converged; fine rods up to that limit
+//! converge to the right answer.
+
+use std::path::PathBuf;
+use std::process::Command;
+
+use rodnet::pipeline::{settings_of, solve_scene};
+use rodnet::solver::verdict::{meaningful, MEANINGFUL_FLOOR};
+use rodnet::solver::NewtonReport;
+
+const CANTILEVER: &str = "networks/cantilever.ron";
+/// Bisshopp & Drucker (1945), PL²/EI = 2: tip deflection and shortening over L.
+const TIP_V: f64 = 0.49345748;
+const TIP_U: f64 = 0.16064172;
+
+fn tmpdir(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("rodnet-verdict-{name}-{}", std::process::id()));
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+/// `rodnet solve` on `text`: exit code, stderr, and whether the JSON was written.
+fn solve_cli(name: &str, text: &str) -> (Option<i32>, String, bool) {
+    let d = tmpdir(name);
+    let (scene, json) = (d.join("scene.ron"), d.join("r.json"));
+    std::fs::write(&scene, text).unwrap();
+    let out = Command::new(env!("CARGO_BIN_EXE_rodnet"))
+        .args(["solve", scene.to_str().unwrap(), "--json"])
+        .arg(&json)
+        .output()
+        .unwrap();
+    (
+        out.status.code(),
+        String::from_utf8_lossy(&out.stderr).into_owned(),
+        json.exists(),
+    )
+}
+
+#[test]
+fn a_column_too_stiff_for_its_load_is_refused_at_its_modulus() {
+    let text = std::fs::read_to_string("networks/euler_column.ron")
+        .unwrap()
+        .replace("young_modulus: 1e9", "young_modulus: 1e19");
+    let (code, stderr, written) = solve_cli("stiff", &text);
+    assert_eq!(code, Some(2), "{stderr}");
+    assert!(!written);
+    assert!(
+        stderr.contains("materials[\"steel\"].young_modulus") && stderr.contains("round-off floor"),
+        "{stderr}"
+    );
+    // The modulus it suggests works: the load is then above round-off.
+    let e: f64 = stderr
+        .split("young_modulus ≤ ")
+        .nth(1)
+        .and_then(|s| s.split(' ').next())
+        .and_then(|s| s.parse().ok())
+        .unwrap_or_else(|| panic!("no suggested modulus in {stderr}"));
+    let text = text.replace("young_modulus: 1e19", &format!("young_modulus: {e:e}"));
+    let (code, stderr, _) = solve_cli("suggested", &text);
+    assert_eq!(code, Some(0), "{stderr}");
+}
+
+#[test]
+fn a_rod_subdivided_past_its_floor_is_refused_at_its_subdivision() {
+    let text = std::fs::read_to_string(CANTILEVER)
+        .unwrap()
+        .replace("subdivide: 40", "subdivide: 100000");
+    let (code, stderr, written) = solve_cli("fine", &text);
+    assert_eq!(code, Some(2), "{stderr}");
+    assert!(!written);
+    assert!(
+        stderr.contains("rods[0].subdivide") && stderr.contains("subdivide ≤ "),
+        "{stderr}"
+    );
+}
+
+#[test]
+fn a_joint_spring_beyond_doubles_is_refused_at_the_joint() {
+    let text = r#"Scene(
+    materials: { "m": Material(young_modulus: 1e9, poisson_ratio: 0.3, section: Circle(radius: 0.01)) },
+    rods: [
+        Rod(name: "a", material: "m", points: [(0.0, 0.0, 0.0), (1.0, 0.0, 0.0)], subdivide: 8),
+        Rod(name: "b", material: "m", points: [(1.0, 0.0, 0.0), (1.0, 1.0, 0.0)], subdivide: 8),
+    ],
+    joints: [ Joint(name: "knee", at: [("a", 1), ("b", 0)],
+                    kind: Elastic(bending: 1e3, twist: 1e3, scissor: 1e3, translation: 1e60)) ],
+    supports: [ Support(rod: "a", vertex: 0, kind: Clamp) ],
+    loads: [ Force(rod: "b", vertex: 1, force: (0.0, 0.0, -10.0)) ],
+)"#;
+    let (code, stderr, written) = solve_cli("spring", text);
+    assert_eq!(code, Some(2), "{stderr}");
+    assert!(!written);
+    assert!(stderr.contains("joints[0].kind"), "{stderr}");
+}
+
+/// 10 to 10⁴ edges: converged, exit 0 by the verdict, the tip within DER's O(1/N²) error of
+/// the elastica (plus the rod's extension P/EA, which the inextensible elastica leaves out).
+#[test]
+fn a_cantilever_converges_from_ten_to_ten_thousand_edges() {
+    let base = std::fs::read_to_string(CANTILEVER).unwrap();
+    for n in [10, 100, 1000, 10000] {
+        let text = base.replace("subdivide: 40", &format!("subdivide: {n}"));
+        let s = rodnet::scene::parse(CANTILEVER, &text).unwrap();
+        let sol = solve_scene(&s, &settings_of(&s)).unwrap();
+        assert!(sol.results.converged, "N = {n}: {:?}", sol.report.message);
+        assert!(sol.report.residual_floor <= MEANINGFUL_FLOOR);
+        let tip = *sol.results.rods[0].points.last().unwrap();
+        let err = ((1.0 - tip[0]) - TIP_U).abs().max((-tip[1] - TIP_V).abs());
+        assert!(
+            err < 0.33 / (n * n) as f64 + 3e-5,
+            "N = {n}: tip error {err:.2e}"
+        );
+    }
+}
+
+#[test]
+fn no_state_beyond_the_meaningful_residual_is_converged() {
+    let report = |residual: f64, floor: f64| NewtonReport {
+        converged: true,
+        residual,
+        residual_floor: floor,
+        tolerance: 1e-9,
+        ..Default::default()
+    };
+    let mut r = report(1e-12, 1e-10);
+    meaningful(&mut r);
+    assert!(r.converged && r.message.is_none());
+    // Stalled at a floor that forces still resolve to a few percent: converged to the floor.
+    let mut r = report(2e-3, 5e-3);
+    meaningful(&mut r);
+    assert!(r.converged && r.message.is_none());
+    // A floor above the bound: forces are noise at that level.
+    let mut r = report(0.2, 0.5);
+    meaningful(&mut r);
+    assert!(!r.converged && r.message.unwrap().contains("round-off floor"));
+    // A loose tolerance asked for is not an answer above the bound either.
+    let mut r = report(5e-3, 1e-8);
+    meaningful(&mut r);
+    assert!(!r.converged && r.message.unwrap().contains("5.000e-3"));
+}
