@@ -22,6 +22,10 @@ const PREDICTOR_LENGTH_ERROR: f64 = 1e-12;
 /// change the rounding (small-displacement scenes then took one more iteration at the floor,
 /// `star` and `euler_column` 1 → 2), and build the projector where nothing needs it.
 const PREDICTION_STRAIN: f64 = 1e-6;
+/// Fraction of the remaining path over which the mechanism test measures the load vector
+/// (`mechanism`): dead loads are linear in λ, so any fraction gives their direction, and a
+/// small one keeps prescribed ends from crossing their neighbours.
+const MECHANISM_PROBE: f64 = 1e-3;
 
 pub struct NetworkProblem<'m> {
     pub model: &'m mut Model,
@@ -42,6 +46,8 @@ pub struct NetworkProblem<'m> {
     /// The load factors at continuation parameters 0 and 1 (default 0 and 1): a solve then
     /// goes from one load factor to another (`network/stability.rs` follows a path beyond 1).
     load_range: (f64, f64),
+    /// The continuation parameter last set (`set_continuation`).
+    lambda: f64,
     /// The factorization object of the last solve, for the next one while the model's Hessian
     /// pattern (its fingerprint) and the ordering asked for stay the same.
     kept: Option<Kept>,
@@ -66,6 +72,7 @@ impl<'m> NetworkProblem<'m> {
             rods: &[],
             gauge_node: None,
             load_range: (0.0, 1.0),
+            lambda: 0.0,
             kept: None,
         }
     }
@@ -329,15 +336,22 @@ impl NewtonProblem for NetworkProblem<'_> {
         e
     }
     fn mechanism(&mut self, modes: &[Vec<f64>]) -> Option<String> {
-        // The load vector: what λ = 1 adds to the gradient at the current state (dead loads,
-        // and the pull of prescribed motions on the free unknowns).
-        let lam = self.model.state.load_factor;
+        // The load vector: the rate at which the load factor changes the gradient at the
+        // current state (dead loads, and the pull of prescribed motions on the free unknowns),
+        // measured over a small increment towards λ = 1. Jumping to λ = 1 moved a prescribed
+        // end past its neighbours (a slack wire's pin moved by 5 edges): the reversed edges'
+        // frames were committed as NaN and poisoned every later attempt. The state is restored
+        // from a snapshot, not by setting λ back (which commits the frames once more).
+        let saved = self.model.state.clone();
+        let lam = self.lambda;
+        let probe = lam + MECHANISM_PROBE * (1.0 - lam);
         let n = self.model.n_free;
         let (mut g0, mut g1) = (vec![0.0; n], vec![0.0; n]);
         self.assemble(&mut g0, None);
-        self.set_continuation(1.0);
+        self.set_continuation(probe);
         self.assemble(&mut g1, None);
-        self.set_continuation(lam);
+        self.model.state.clone_from(&saved);
+        self.lambda = lam;
         g1.iter_mut().zip(&g0).for_each(|(a, b)| *a -= b);
         crate::network::mechanism::describe(self.model, self.rods, self.gauge_node, modes, &g1)
     }
@@ -427,6 +441,7 @@ impl NewtonProblem for NetworkProblem<'_> {
     }
     fn set_continuation(&mut self, lambda: f64) {
         let (a, b) = self.load_range;
+        self.lambda = lambda;
         self.model.set_load(a + lambda * (b - a));
         // Prescribed variables moved: reference frames must follow before the next assembly.
         self.model.commit();
