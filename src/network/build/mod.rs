@@ -102,7 +102,7 @@ pub fn build(scene: &Scene) -> Result<Network, FieldError> {
     model.contact = Contact::build(
         scene,
         &net.rods,
-        model.unknowns(),
+        (model.unknowns(), &model.rollers.list),
         &model.state.q,
         length_scale,
     )?;
