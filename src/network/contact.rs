@@ -9,6 +9,7 @@
 
 use crate::math::vec::{dot, norm, scalef, sub};
 use crate::network::info::RodInfo;
+use crate::network::roller::SlantedRoller;
 use crate::scene::types::{Obstacle, Scene};
 use crate::scene::FieldError;
 use crate::variables::{DofLayout, Unknowns};
@@ -102,6 +103,17 @@ pub struct Row {
     pub node: usize,
     pub source: Source,
     kind: Kind,
+    /// What the node's supports leave of its motion: the free coordinates (a roller along x, y
+    /// or z eliminates one), and for a slanted roller the projector P = I − UUᵀ onto its
+    /// planes. The solver's unknowns move only there, so the row's Jacobian is P∇c over the free
+    /// coordinates; the normal part of the contact force goes to the roller's reaction.
+    held: Held,
+}
+
+#[derive(Debug, Clone, Copy)]
+struct Held {
+    free: [bool; 3],
+    projector: Option<[[f64; 3]; 3]>,
 }
 
 #[derive(Debug, Clone)]
@@ -149,6 +161,46 @@ impl Row {
         self.eval(&c.shapes, c.layout.position(q, self.node))
     }
 
+    /// Value and Jacobian at positions `q` with respect to the node's unknowns: the gradient
+    /// projected onto the node's roller planes, zero on coordinates that supports eliminate.
+    pub fn linearized(&self, c: &Contact, q: &[f64]) -> (f64, [f64; 3]) {
+        let (v, g) = self.at(c, q);
+        let g = match self.held.projector {
+            Some(p) => std::array::from_fn(|i| dot(p[i], g)),
+            None => g,
+        };
+        (
+            v,
+            std::array::from_fn(|k| if self.held.free[k] { g[k] } else { 0.0 }),
+        )
+    }
+
+    /// Whether no motion that the node's supports allow changes the row: a plane or bound
+    /// along the normal of the node's roller. Such a row is met at rest and stays met (its
+    /// roller holds the node); kept, its zero Jacobian would make the step QP's active-set
+    /// system singular wherever it touches (a beam lying on a floor at its roller).
+    fn is_constant(&self, shapes: &[Shape]) -> bool {
+        let normal = match self.kind {
+            Kind::Surface { shape, .. } => match shapes[shape] {
+                Shape::Plane { normal, .. } => normal,
+                Shape::Sphere { .. } | Shape::Cylinder { .. } => return false,
+            },
+            Kind::Lower { axis, .. } | Kind::Upper { axis, .. } => {
+                std::array::from_fn(|k| f64::from(k == axis))
+            }
+        };
+        let g = match self.held.projector {
+            Some(p) => std::array::from_fn(|i| dot(p[i], normal)),
+            None => normal,
+        };
+        (0..3).all(|k| !self.held.free[k] || g[k].abs() <= 1e-12)
+    }
+
+    /// The free node coordinates the row's Jacobian has entries for.
+    fn free_axes(&self) -> impl Iterator<Item = usize> + '_ {
+        self.axes().filter(|&k| self.held.free[k])
+    }
+
     /// The row's curvature at positions `q`, for rows on curved surfaces: ∇²c = (I − nnᵀ)/d on
     /// a ball, (I − nnᵀ − aaᵀ)/d on a cylinder of axis a, with d the node's distance from the
     /// centre (axis). `(d, a)`; None where ∇²c = 0 (planes, bounds).
@@ -173,11 +225,11 @@ fn obstacle_rows(
     obstacles: usize,
     order: &[usize],
     radius: &[f64],
-    free: impl Fn(usize) -> bool,
+    held: impl Fn(usize) -> Option<Held>,
 ) -> Vec<Row> {
     let mut rows = Vec::new();
     for i in 0..obstacles {
-        for &n in order.iter().filter(|&&n| free(n)) {
+        for (n, held) in order.iter().filter_map(|&n| held(n).map(|h| (n, h))) {
             rows.push(Row {
                 node: n,
                 source: Source::Obstacle(i),
@@ -185,6 +237,7 @@ fn obstacle_rows(
                     shape: i,
                     clearance: radius[n],
                 },
+                held,
             });
         }
     }
@@ -196,7 +249,7 @@ fn bound_rows(
     scene: &Scene,
     rods: &[RodInfo],
     order: &[usize],
-    free: impl Fn(usize) -> bool,
+    held: impl Fn(usize) -> Option<Held>,
 ) -> Vec<Row> {
     let mut rows = Vec::new();
     for (i, b) in scene.bounds.iter().enumerate() {
@@ -216,14 +269,16 @@ fn bound_rows(
             _ => order.to_vec(),
         };
         let mut seen = std::collections::HashSet::new();
-        nodes.retain(|&n| free(n) && seen.insert(n));
+        nodes.retain(|&n| held(n).is_some() && seen.insert(n));
         for axis in 0..3 {
             for &n in &nodes {
+                let held = held(n).expect("retained");
                 if let Some(value) = b.min[axis] {
                     rows.push(Row {
                         node: n,
                         source: Source::Bound(i),
                         kind: Kind::Lower { axis, value },
+                        held,
                     });
                 }
                 if let Some(value) = b.max[axis] {
@@ -231,6 +286,7 @@ fn bound_rows(
                         node: n,
                         source: Source::Bound(i),
                         kind: Kind::Upper { axis, value },
+                        held,
                     });
                 }
             }
@@ -241,12 +297,13 @@ fn bound_rows(
 
 impl Contact {
     /// The constraints a scene declares, over the free nodes of the built rods; `None` when it
-    /// declares none. Supported nodes are fixed and carry no constraint. A rest shape that
-    /// violates a constraint is an input error.
+    /// declares none. Pinned and clamped nodes are fixed and carry no constraint; a roller's
+    /// node does, in the directions its planes leave free (`slanted`: the rollers held by
+    /// projection). A rest shape that violates a constraint is an input error.
     pub fn build(
         scene: &Scene,
         rods: &[RodInfo],
-        unknowns: Unknowns,
+        (unknowns, slanted): (Unknowns, &[SlantedRoller]),
         q: &[f64],
         length_scale: f64,
     ) -> Result<Option<Contact>, FieldError> {
@@ -268,10 +325,14 @@ impl Contact {
                 radius[n] = radius[n].max(rod.stiffness.outer_radius);
             }
         }
-        let free = |n: usize| unknowns.of_node(n, 0).is_some();
+        let held = |n: usize| {
+            let free: [bool; 3] = std::array::from_fn(|k| unknowns.of_node(n, k).is_some());
+            let projector = slanted.iter().find(|r| r.node == n).map(|r| r.projector);
+            free.contains(&true).then_some(Held { free, projector })
+        };
         let shapes: Vec<Shape> = scene.obstacles.iter().map(Shape::of).collect();
-        let mut rows = obstacle_rows(shapes.len(), &order, &radius, free);
-        rows.extend(bound_rows(scene, rods, &order, free));
+        let mut rows = obstacle_rows(shapes.len(), &order, &radius, held);
+        rows.extend(bound_rows(scene, rods, &order, held));
         let contact = Contact {
             shapes,
             rows,
@@ -279,6 +340,10 @@ impl Contact {
             layout,
         };
         contact.check_rest(rods, &owner, &radius, q)?;
+        let mut contact = contact;
+        let shapes = std::mem::take(&mut contact.shapes);
+        contact.rows.retain(|r| !r.is_constant(&shapes));
+        contact.shapes = shapes;
         Ok(Some(contact))
     }
 
@@ -345,8 +410,8 @@ impl Contact {
     pub fn pattern(&self, unknowns: Unknowns) -> Vec<(usize, usize)> {
         let mut out = Vec::new();
         for (j, row) in self.rows.iter().enumerate() {
-            for k in row.axes() {
-                out.push((j, unknowns.of_node(row.node, k).expect("free node")));
+            for k in row.free_axes() {
+                out.push((j, unknowns.of_node(row.node, k).expect("free coordinate")));
             }
         }
         out
@@ -356,9 +421,9 @@ impl Contact {
     pub fn values(&self, q: &[f64], c: &mut [f64], jac: &mut [f64]) {
         let mut at = 0;
         for (j, row) in self.rows.iter().enumerate() {
-            let (v, g) = row.at(self, q);
+            let (v, g) = row.linearized(self, q);
             c[j] = v;
-            for k in row.axes() {
+            for k in row.free_axes() {
                 jac[at] = g[k];
                 at += 1;
             }
@@ -386,16 +451,18 @@ impl Contact {
         })
     }
 
-    /// Moves every violating node back onto the constraint's surface (closest point), e.g. after
-    /// an extrapolated predictor. Two sweeps settle nodes with two active constraints that do not
-    /// interfere (a floor and a side bound); anything else is left to the Newton steps.
+    /// Moves every violating node back onto the constraint's surface (closest point, within
+    /// what its supports leave free), e.g. after an extrapolated predictor. Two sweeps settle
+    /// nodes with two active constraints that do not interfere (a floor and a side bound);
+    /// anything else is left to the Newton steps.
     pub fn project(&self, q: &mut [f64]) {
         for _ in 0..2 {
             for r in &self.rows {
-                let (c, g) = r.at(self, q);
-                if c < 0.0 {
+                let (c, g) = r.linearized(self, q);
+                let gg = dot(g, g);
+                if c < 0.0 && gg > 0.0 {
                     for (k, v) in self.layout.node(r.node).into_iter().enumerate() {
-                        q[v] -= c * g[k];
+                        q[v] -= c * g[k] / gg;
                     }
                 }
             }
@@ -408,15 +475,16 @@ impl Contact {
     /// a + αb + α²e is ≥ (1 − α)a when e ≥ 0, and concave with non-negative ends when e < 0.
     pub fn limit_correction(&self, q: &[f64], unknowns: Unknowns, d: &[f64], corr: &mut [f64]) {
         for r in &self.rows {
-            let (c, g) = r.at(self, q);
-            let fi = |k: usize| unknowns.of_node(r.node, k).expect("free node");
-            let along = |v: &[f64]| r.axes().map(|k| g[k] * v[fi(k)]).sum::<f64>();
+            let (c, g) = r.linearized(self, q);
+            let gg: f64 = r.free_axes().map(|k| g[k] * g[k]).sum();
+            let fi = |k: usize| unknowns.of_node(r.node, k).expect("free coordinate");
+            let along = |v: &[f64]| r.free_axes().map(|k| g[k] * v[fi(k)]).sum::<f64>();
             let e = along(corr);
             let total = c + along(d) + e;
-            if total < 0.0 && e < 0.0 {
-                // Remove just enough of the correction's inward part (gradients are unit).
-                let cut = (-total).min(-e);
-                for k in r.axes() {
+            if total < 0.0 && e < 0.0 && gg > 0.0 {
+                // Remove just enough of the correction's inward part.
+                let cut = (-total).min(-e) / gg;
+                for k in r.free_axes() {
                     corr[fi(k)] += cut * g[k];
                 }
             }

@@ -70,7 +70,7 @@ const POLISH_ROUNDS: usize = 6;
 /// In-place Cholesky factor (lower triangle, row-major, a × a) of a symmetric positive
 /// definite matrix given by its lower triangle; false if it is not numerically positive
 /// definite.
-fn dense_cholesky(s: &mut [f64], a: usize) -> bool {
+pub(super) fn dense_cholesky(s: &mut [f64], a: usize) -> bool {
     for j in 0..a {
         let mut dj = s[j * a + j];
         for k in 0..j {

@@ -167,26 +167,38 @@ impl Newton {
             Some(_) => true,
             None => false,
         };
+        // Zero modes that the problem calls excited mechanisms, each with its description.
+        let mut mechanisms: Vec<(String, Vec<f64>)> = Vec::new();
         if suspect {
-            let zero: Vec<Vec<f64>> = self
+            for (_, v) in self
                 .lowest_modes(ZERO_MODES)
                 .into_iter()
                 .filter(|(l, _)| l.abs() < ZERO_EIGENVALUE)
-                .map(|(_, v)| v)
-                .collect();
-            if let Some(m) = (!zero.is_empty()).then(|| p.mechanism(&zero)).flatten() {
-                return Err(m);
+            {
+                if let Some(m) = p.mechanism(std::slice::from_ref(&v)) {
+                    mechanisms.push((m, v));
+                }
             }
         }
         p.set_continuation(next);
         if shift.is_none() || n == 0 {
-            return Ok(true);
+            return match mechanisms.into_iter().next() {
+                Some((m, _)) => Err(m),
+                None => Ok(true),
+            };
         }
         let e1 = p.assemble(&mut self.d, None);
         for i in 0..n {
             self.d[i] = self.g[i] - self.d[i];
         }
+        let load = (!mechanisms.is_empty()).then(|| self.d.clone());
         self.chol.solve(&mut self.d);
+        if let Some(load) = load {
+            let modes: Vec<&[f64]> = mechanisms.iter().map(|(_, v)| v.as_slice()).collect();
+            if !self.stiffened(p, (lam, next), &load, &modes) {
+                return Err(mechanisms.swap_remove(0).0);
+            }
+        }
         let alpha = p.max_step(&self.d).min(1.0);
         let e = p.trial_energy(&self.d, alpha);
         let lowered = e.is_finite() && e < e1;
@@ -200,6 +212,86 @@ impl Newton {
             self.lift(p);
         }
         Ok(held)
+    }
+
+    /// Whether the loads of the increment stiffen every combination of the zero modes `modes`
+    /// of the start (W-orthonormal) instead of driving them: a prestressed structure (a spoked
+    /// wheel tensioned by its hub, a net pulled taut) has modes of zero elastic stiffness that
+    /// its stress makes stiff, while a mechanism that the loads load only at second order (a
+    /// frame on a line of pins under a vertical load: an inverted pendulum) is softened by them
+    /// or left at zero. `load` is minus the increment's change of the gradient, the linear
+    /// response to it is in `d`. Loads that work on a mode (their component along it above 1e-6
+    /// of their size) excite it at first order: a mechanism. Otherwise the rate at which the
+    /// loads change the stiffness matrix K = VᵀHV over the modes decides: K at the states
+    /// ±ε·d along the increment's linear response (loads at λ ± ε·Δλ, ε·d at most 1e-4 of the
+    /// length scale: central differences, so that a response that is far from linear over the
+    /// whole increment does not matter), with HV from central differences of the gradient
+    /// (step 1e-6 in the dimensionless unknowns). Stiff at the end of the increment beyond the
+    /// zero band of the start (Δλ·K' − 1e-10·scale·I positive definite): no mechanism.
+    fn stiffened<P: NewtonProblem>(
+        &mut self,
+        p: &mut P,
+        (lam, next): (f64, f64),
+        load: &[f64],
+        modes: &[&[f64]],
+    ) -> bool {
+        const WORK: f64 = 1e-6;
+        const H: f64 = 1e-6;
+        let w = &self.weights;
+        let size = load
+            .iter()
+            .zip(w)
+            .map(|(f, w)| f * f / w)
+            .sum::<f64>()
+            .sqrt();
+        let works = |v: &[f64]| load.iter().zip(v).map(|(f, v)| f * v).sum::<f64>().abs();
+        if modes.iter().any(|v| works(v) > WORK * size) {
+            return false;
+        }
+        // What the response holds of the modes is the shifted factor's 1/τ amplification of
+        // round-off in the loads: removed, here and from the prediction.
+        for v in modes {
+            let c: f64 = (0..v.len()).map(|i| w[i] * v[i] * self.d[i]).sum();
+            self.d
+                .iter_mut()
+                .zip(v.iter())
+                .for_each(|(d, v)| *d -= c * v);
+        }
+        let eps = (1e-2 * p.perturbation_size(&self.d)).min(1.0);
+        let (n, m) = (load.len(), modes.len());
+        let (mut step, mut gp, mut gm) = (vec![0.0; n], vec![0.0; n], vec![0.0; n]);
+        let mut rate = vec![0.0; m * m];
+        for side in [1.0, -1.0] {
+            p.set_continuation(lam + side * eps * (next - lam));
+            for (j, v) in modes.iter().enumerate() {
+                let mut at = |sign: f64, g: &mut [f64]| {
+                    for i in 0..n {
+                        step[i] = side * eps * self.d[i] + sign * H * v[i];
+                    }
+                    p.trial_gradient(&step, 1.0, g).is_finite()
+                };
+                if !(at(1.0, &mut gp) && at(-1.0, &mut gm)) {
+                    p.set_continuation(next);
+                    return false;
+                }
+                for (i, u) in modes.iter().enumerate() {
+                    let k: f64 = (0..n).map(|l| u[l] * (gp[l] - gm[l])).sum::<f64>() / (2.0 * H);
+                    rate[i * m + j] += side * k / (2.0 * eps);
+                }
+            }
+        }
+        p.set_continuation(next);
+        // Symmetrized, over the increment, less the zero band: positive definite when its
+        // Cholesky factor exists.
+        let band = ZERO_EIGENVALUE * self.scaled_diagonal();
+        let mut s: Vec<f64> = (0..m * m)
+            .map(|ij| {
+                let (i, j) = (ij / m, ij % m);
+                let k = 0.5 * (rate[i * m + j] + rate[j * m + i]) * (next - lam);
+                k - if i == j { band } else { 0.0 }
+            })
+            .collect();
+        super::qp::dense_cholesky(&mut s, m)
     }
 
     /// The first prediction of a buckling path (`buckle_toward`): the linear response leaves a

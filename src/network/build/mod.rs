@@ -114,7 +114,7 @@ fn build_here(scene: &Scene) -> Result<Network, FieldError> {
     model.contact = Contact::build(
         scene,
         &net.rods,
-        model.unknowns(),
+        (model.unknowns(), &model.rollers.list),
         &model.state.q,
         length_scale,
     )?;

@@ -67,9 +67,12 @@ pub fn forces(
     let (mut violation, mut compl, mut zmin): (f64, f64, f64) = (0.0, 0.0, f64::INFINITY);
     for (j, row) in contact.rows.iter().enumerate() {
         let (c, g) = row.at(contact, q);
+        // The gradient is projected where supports hold (slanted rollers), and so is the
+        // constraint's pull on the unknowns: the rest is the roller's reaction.
+        let jac = row.linearized(contact, q).1;
         for k in 0..3 {
             if let Some(v) = unknowns.of_node(row.node, k) {
-                stationarity[v] -= z[j] * g[k];
+                stationarity[v] -= z[j] * jac[k];
             }
         }
         violation = violation.max(-c);
@@ -98,4 +101,21 @@ pub fn forces(
         report: cr.clone(),
     };
     ConstraintForces { contacts, kkt }
+}
+
+/// The constraints' total force on each node they press (the multipliers times the gradients).
+pub fn node_forces(
+    contact: &Contact,
+    cr: &ConstraintReport,
+    q: &[f64],
+) -> std::collections::HashMap<usize, [f64; 3]> {
+    let mut out = std::collections::HashMap::new();
+    for (row, &z) in contact.rows.iter().zip(&cr.multipliers) {
+        if z != 0.0 {
+            let g = row.at(contact, q).1;
+            let f: &mut [f64; 3] = out.entry(row.node).or_insert([0.0; 3]);
+            (0..3).for_each(|k| f[k] += z * g[k]);
+        }
+    }
+    out
 }

@@ -182,6 +182,18 @@ impl Equilibrium {
         // supports hold it; how it divides among them is statically indeterminate. The first
         // support on a node carries its force, the first clamp on a frame its moment, and later
         // ones report zero, so that the reactions sum to minus the loads.
+        let constraints = m.contact.as_ref().map(|c| {
+            // A scene whose constrained nodes are all supported has no rows and no QP.
+            let none = Default::default();
+            let cr = report.constraints.as_ref().unwrap_or(&none);
+            constraints::forces(net, c, cr, &grad, report.tolerance)
+        });
+        // A roller's node may also touch an obstacle: the contact takes its share of the node's
+        // gradient, the roller the rest.
+        let pressed = match (&m.contact, &report.constraints) {
+            (Some(c), Some(cr)) => constraints::node_forces(c, cr, &m.state.q),
+            _ => Default::default(),
+        };
         let mut node_taken = std::collections::HashSet::new();
         let mut frame_taken = std::collections::HashSet::new();
         let reactions = net
@@ -207,7 +219,10 @@ impl Equilibrium {
                         .map_or([0.0; 3], |k| m.terms.rotational_springs[k].moment(&m.state));
                     return at(Reaction { force, moment });
                 }
-                let at_node = m.layout.node(s.node).map(|v| full[v]);
+                let mut at_node = m.layout.node(s.node).map(|v| full[v]);
+                if let Some(f) = pressed.get(&s.node) {
+                    at_node = std::array::from_fn(|k| at_node[k] - f[k]);
+                }
                 let slanted = m.rollers.list.iter().find(|r| r.node == s.node);
                 let force = match (node_taken.insert(s.node), slanted) {
                     (false, _) => [0.0; 3],
@@ -222,12 +237,6 @@ impl Equilibrium {
                 at(Reaction { force, moment })
             })
             .collect();
-        let constraints = m.contact.as_ref().map(|c| {
-            // A scene whose constrained nodes are all supported has no rows and no QP.
-            let none = Default::default();
-            let cr = report.constraints.as_ref().unwrap_or(&none);
-            constraints::forces(net, c, cr, &grad, report.tolerance)
-        });
         let mut energy_by_kind = m.energy_by_kind();
         for k in energy_by_kind.iter_mut().filter(|k| k.name == "loads") {
             k.energy = load_energy::from_rest(net, scene);
