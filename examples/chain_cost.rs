@@ -12,7 +12,7 @@
 //! prediction), over the iterations between them. Then, at the state the solve ended at, the
 //! median of 5 of: one numeric factorization (of H + 1e-10·diag scale·I, the shift the solver
 //! starts its regularization with; the cost is the same with or without), one assembly
-//! (energy, gradient, Hessian), one solve, one energy. The ratio is the iteration's wall time
+//! (energy, gradient, Hessian), one solve, one product H·x, one energy. The ratio is the iteration's wall time
 //! over the factorization's. Everything runs on a worker of the thread pool, as the solver
 //! does.
 use std::sync::{Arc, Mutex};
@@ -42,9 +42,9 @@ fn table() {
     let (base, _) = rodnet::scene::load(std::path::Path::new(path)).unwrap();
     println!(
         "| edges | unknowns | its | facts | solve s | per iteration ms | LLT ms | ratio | \
-         assembly ms | solve ms | energy ms | nnz(L) |"
+         assembly ms | solve ms | H·x ms | energy ms | nnz(L) |"
     );
-    println!("|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
+    println!("|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|---:|");
     for &n in &ns {
         let mut scene = base.clone();
         scene.rods[0].subdivide = n;
@@ -113,6 +113,16 @@ fn table() {
                 })
                 .collect(),
         );
+        let mut y = vec![0.0; nf];
+        let multiply = median(
+            (0..5)
+                .map(|_| {
+                    let t = Instant::now();
+                    chol.multiply(&b, &mut y);
+                    t.elapsed().as_secs_f64()
+                })
+                .collect(),
+        );
         let energy = median(
             (0..5)
                 .map(|_| {
@@ -124,7 +134,7 @@ fn table() {
         );
         let r = &sol.report;
         println!(
-            "| {n} | {nf} | {} | {} | {total:.2} | {:.1} | {:.1} | {:.1} | {:.1} | {:.1} | {:.1} | {} |",
+            "| {n} | {nf} | {} | {} | {total:.2} | {:.1} | {:.1} | {:.1} | {:.1} | {:.1} | {:.1} | {:.1} | {} |",
             r.iterations,
             r.factorizations,
             1e3 * per_iteration,
@@ -132,6 +142,7 @@ fn table() {
             per_iteration / factor,
             1e3 * assembly,
             1e3 * solve,
+            1e3 * multiply,
             1e3 * energy,
             chol.factor_nnz(),
         );
