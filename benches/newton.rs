@@ -8,6 +8,11 @@
 //!   rod-interior stencil of that grid (`BendTwist`), every half-stencil of the same grid with
 //!   rigid joints (`FrameBendTwist`).
 //! - `cantilever_solve`: the large-deflection cantilever (PL²/EI = 2) from rest, N edges.
+//! - `chain_*`: `networks/cantilever.ron` subdivided into 10⁴, 3·10⁴ and 10⁵ edges, at rest under
+//!   its full load: assembly, numeric factorization, and one Newton iteration as for the grid,
+//!   on H + τI with the first τ of 1e-10, 1e-8, … of the diagonal scale that factors (whole
+//!   solves per iteration: `examples/chain_cost.rs`; docs/performance.md, "Cost per iteration
+//!   on long chains").
 
 mod common;
 
@@ -228,4 +233,58 @@ fn cantilever_solve(bencher: divan::Bencher, n: usize) {
         let mut net = build(&s).unwrap();
         rodnet::network::solve(&mut net.model, &settings).converged
     });
+}
+
+/// The chain of `edges` edges at rest under its full load, its slot map, a factorization object
+/// on its pattern with the Hessian's values in it, and the shift that factors it.
+fn chain_model(edges: usize) -> (Model, HessianSlots, SparseCholesky, f64) {
+    let path = concat!(env!("CARGO_MANIFEST_DIR"), "/networks/cantilever.ron");
+    let (mut scene, _) = rodnet::scene::load(std::path::Path::new(path)).unwrap();
+    scene.rods[0].subdivide = edges;
+    let mut m = build(&scene).unwrap().model;
+    m.set_load(1.0);
+    let (mut chol, slots) = SparseCholesky::new(m.n_free, &m.hessian_pattern());
+    let hs = m.hessian_slots(&slots);
+    let mut g = vec![0.0; m.n_free];
+    m.assemble(&mut Assembly {
+        grad: &mut g,
+        full_grad: None,
+        hess: Some(HessianOut {
+            values: &mut chol.values,
+            slots: &hs,
+        }),
+    });
+    let mut shift = 1e-10 * chol.diagonal_scale();
+    while chol.factor(shift).is_err() {
+        shift *= 100.0;
+    }
+    (m, hs, chol, shift)
+}
+
+#[divan::bench(args = [10_000, 30_000, 100_000], sample_count = 10)]
+fn chain_assembly(bencher: divan::Bencher, edges: usize) {
+    let (m, hs, mut chol, _) = chain_model(edges);
+    let mut g = vec![0.0; m.n_free];
+    bencher.bench_local(|| {
+        m.assemble(&mut Assembly {
+            grad: &mut g,
+            full_grad: None,
+            hess: Some(HessianOut {
+                values: &mut chol.values,
+                slots: &hs,
+            }),
+        })
+    });
+}
+
+#[divan::bench(args = [10_000, 30_000, 100_000], sample_count = 10)]
+fn chain_factorization(bencher: divan::Bencher, edges: usize) {
+    let (_, _, mut chol, shift) = chain_model(edges);
+    bencher.bench_local(|| chol.factor(shift).is_ok());
+}
+
+#[divan::bench(args = [10_000, 30_000, 100_000], sample_count = 10)]
+fn chain_newton_iteration(bencher: divan::Bencher, edges: usize) {
+    let (m0, hs, mut chol, shift) = chain_model(edges);
+    common::bench_newton_iteration(bencher, &m0, &hs, &mut chol, shift);
 }

@@ -126,6 +126,7 @@ pub(super) fn follow<P: NewtonProblem>(
                 deadline,
                 retry_on_damping: false,
                 step_tolerance: None,
+                judge_stability: true,
             };
             return st.iterate(p, s, &lim, s.load_steps.max(1));
         }

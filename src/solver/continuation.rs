@@ -86,6 +86,7 @@ fn solve_here<P: NewtonProblem>(
         lam: 0.0,
         inc: 1.0 / steps as f64,
         start_iterations: 0,
+        modes_checked_at: None,
     };
     path.follow(&mut st, p, s);
     let r = &mut st.report;
@@ -117,6 +118,11 @@ struct Path {
     inc: f64,
     /// Iterations spent equilibrating the start (reported with the first load step).
     start_iterations: usize,
+    /// The path parameter whose state the tangent predictor has already searched for
+    /// zero-stiffness modes and found no mechanism: a first sub-step that is retried restarts
+    /// from that same state (restored from its snapshot), and the search, a block inverse
+    /// iteration of up to 120 solves, would find the same.
+    modes_checked_at: Option<f64>,
 }
 
 impl Path {
@@ -189,11 +195,13 @@ impl Path {
         if !(p.assemble(&mut st.g, None).is_finite() && p.relative_residual(&st.g) > s.tolerance) {
             return;
         }
-        let lim = self.limits(
+        let mut lim = self.limits(
             s.tolerance.max(INTERMEDIATE_TOLERANCE),
             (s.max_iterations, s.max_iterations),
             false,
         );
+        // The path's states replace the start's verdict (see `load_step` for `s.intermediate`).
+        lim.judge_stability = s.intermediate;
         let saved = p.snapshot();
         match st.iterate(p, s, &lim, 0) {
             Outcome::Converged | Outcome::AtFloor => st.report.substeps += 1,
@@ -225,6 +233,7 @@ impl Path {
             deadline: self.deadline,
             retry_on_damping,
             step_tolerance: None,
+            judge_stability: true,
         }
     }
 
@@ -261,6 +270,26 @@ impl Path {
         }
     }
 
+    /// The first sub-step's prediction from the current state toward `next`
+    /// (`Newton::tangent_predict`), which looks for mechanisms only at a state not yet looked at.
+    fn tangent_predict<P: NewtonProblem>(
+        &mut self,
+        st: &mut Newton,
+        p: &mut P,
+        next: f64,
+    ) -> Result<bool, String> {
+        let r = st.tangent_predict(
+            p,
+            (self.load(self.lam), self.load(next)),
+            self.root_path && self.inc > MIN_INCREMENT * 1.0001,
+            self.modes_checked_at != Some(self.lam),
+        );
+        if r.is_ok() {
+            self.modes_checked_at = Some(self.lam);
+        }
+        r
+    }
+
     /// Reaches λ = k/steps through sub-steps whose increment is quartered on failure and
     /// doubles after easy convergence; a prediction from the last converged states (`predict`)
     /// starts each sub-step. `max_iterations` bounds the Newton iterations of the whole load
@@ -285,11 +314,7 @@ impl Path {
             match prev.last() {
                 Some((lp, _)) if self.lam > *lp => self.predict(p, prev, next, &saved),
                 Some(_) => p.set_continuation(self.load(next)),
-                None => match st.tangent_predict(
-                    p,
-                    (self.load(self.lam), self.load(next)),
-                    self.root_path && self.inc > MIN_INCREMENT * 1.0001,
-                ) {
+                None => match self.tangent_predict(st, p, next) {
                     Err(m) => return Outcome::Mechanism(m),
                     // Past a bifurcation the linear response is the symmetric saddle's; where it
                     // does not even hold over the increment, Newton from the lifted prediction
@@ -324,6 +349,10 @@ impl Path {
             if intermediate {
                 lim.step_tolerance = Some(INTERMEDIATE_STEP);
             }
+            // Only the state at the path's end is reported. (A solve whose end state is itself
+            // intermediate, `s.intermediate`, judges every sub-step: its last may end on a small
+            // step, which does not judge, and keep the verdict of the one before.)
+            lim.judge_stability = next >= 1.0 || s.intermediate;
             let before = st.report.iterations;
             match st.iterate(p, s, &lim, k) {
                 o @ (Outcome::Converged | Outcome::AtFloor) => {

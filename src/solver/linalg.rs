@@ -308,19 +308,29 @@ impl SparseCholesky {
     }
 
     /// y = A x for another matrix of the same pattern, given by its `values`.
+    ///
+    /// Column by column, each entry of the upper triangle (rows sorted, r ≤ c) added to its row
+    /// and to its column. A column's own sum is kept in a register: y_c is still zero when its
+    /// column is reached (later columns add to it only after), so the sums are those of adding
+    /// to y_c in memory, to the last bit (tests/sparse_product.rs), at two thirds of the time on
+    /// a 10⁵-edge chain (docs/performance.md).
     pub fn multiply_with(&self, values: &[f64], x: &[f64], y: &mut [f64]) {
         y.iter_mut().for_each(|v| *v = 0.0);
         let cp = self.symbolic.pattern.col_ptr();
         let ri = self.symbolic.pattern.row_idx();
         for c in 0..self.n {
+            let xc = x[c];
+            let mut own = y[c];
             for p in cp[c]..cp[c + 1] {
-                let r = ri[p];
-                let v = values[p];
-                y[r] += v * x[c];
-                if r != c {
-                    y[c] += v * x[r];
+                let (r, v) = (ri[p], values[p]);
+                if r == c {
+                    own += v * xc;
+                } else {
+                    y[r] += v * xc;
+                    own += v * x[r];
                 }
             }
+            y[c] = own;
         }
     }
 }

@@ -80,6 +80,13 @@ pub(super) struct Limits {
     /// Intermediate states only: a full, unregularized Newton step no larger than this (in the
     /// unknowns' scales) ends the attempt after it is taken, without assembling again.
     pub step_tolerance: Option<f64>,
+    /// Whether the state the iterations end at is judged for stability (`stable_unshifted`,
+    /// `gauge_modes_only`): not a state that only starts the next sub-step of the same path,
+    /// whose verdict the final state's replaces. On a 10⁵-edge chain the judgement is a block
+    /// inverse iteration of up to 120 solves, tens of factorizations' worth per sub-step
+    /// (docs/performance.md, "Cost per iteration on long chains"). The saddle escape is still
+    /// tried: it changes the path.
+    pub judge_stability: bool,
 }
 
 pub(super) struct Newton {
@@ -205,12 +212,16 @@ impl Newton {
                     ));
                 };
                 if shift == 0.0 {
-                    self.report.stable = self.stable_unshifted(p);
+                    if lim.judge_stability {
+                        self.report.stable = self.stable_unshifted(p);
+                    }
                     return done(res);
                 }
                 match self.escape_saddle(p, e0) {
                     Saddle::ZeroModesOnly => {
-                        self.report.stable = self.gauge_modes_only(p);
+                        if lim.judge_stability {
+                            self.report.stable = self.gauge_modes_only(p);
+                        }
                         return done(res);
                     }
                     Saddle::Escaped if escapes < 8 => {
@@ -266,7 +277,9 @@ impl Newton {
                 if shift == 0.0 && res < floor && self.scaled_step() <= NEGLIGIBLE_STEP {
                     p.accept(&self.d, 1.0);
                     self.report.iterations += 1;
-                    self.report.stable = self.stable_unshifted(p);
+                    if lim.judge_stability {
+                        self.report.stable = self.stable_unshifted(p);
+                    }
                     return done(res);
                 }
             }
@@ -303,7 +316,9 @@ impl Newton {
                 None => {
                     let corrected = curves.0;
                     let failed = (e0, shift, res, floor, corrected);
-                    if let Err(outcome) = self.after_failed_search(p, failed, &mut escapes) {
+                    if let Err(outcome) =
+                        self.after_failed_search(p, failed, lim.judge_stability, &mut escapes)
+                    {
                         return outcome;
                     }
                 }
@@ -435,6 +450,7 @@ impl Newton {
         &mut self,
         p: &mut P,
         (e0, shift, res, floor, corrected): (f64, f64, f64, f64, bool),
+        judge: bool,
         escapes: &mut usize,
     ) -> Result<(), Outcome> {
         // Judge the full step by its residual.
@@ -463,7 +479,9 @@ impl Newton {
                     Ok(())
                 }
                 Saddle::ZeroModesOnly if res < floor => {
-                    self.report.stable = self.gauge_modes_only(p);
+                    if judge {
+                        self.report.stable = self.gauge_modes_only(p);
+                    }
                     Err(Outcome::AtFloor)
                 }
                 _ if res < floor => {

@@ -137,13 +137,15 @@ impl Newton {
     /// prediction is then lifted (`lift`), unless it did not hold and `cut_if_not_held`.
     ///
     /// With the Hessian at `lam` factored, this is also where zero-stiffness modes of the start
-    /// are looked for: a mechanism that the loads excite is returned as Err with its
-    /// description (`NewtonProblem::mechanism`).
+    /// are looked for (`check_modes`; not when the caller has already looked at this state):
+    /// a mechanism that the loads excite is returned as Err with its description
+    /// (`NewtonProblem::mechanism`).
     pub(super) fn tangent_predict<P: NewtonProblem>(
         &mut self,
         p: &mut P,
         (lam, next): (f64, f64),
         cut_if_not_held: bool,
+        check_modes: bool,
     ) -> Result<bool, String> {
         let n = self.g.len();
         if self.qp.is_some() {
@@ -159,14 +161,14 @@ impl Newton {
         } else {
             None
         };
-        let gauges = p.gauge_modes();
         // On a shifted factor a zero mode grows only by 1/τ, which the probe cannot tell from
         // a stiff mode when τ ≥ 1e-10 of the scale: a shifted start looks at the modes.
-        let suspect = match shift {
-            Some(0.0) => self.near_singular(&gauges),
-            Some(_) => true,
-            None => false,
-        };
+        let suspect = check_modes
+            && match shift {
+                Some(0.0) => self.near_singular(&p.gauge_modes()),
+                Some(_) => true,
+                None => false,
+            };
         // Zero modes that the problem calls excited mechanisms, each with its description.
         let mut mechanisms: Vec<(String, Vec<f64>)> = Vec::new();
         if suspect {
