@@ -65,10 +65,11 @@ pub fn build_within_limit(
         budget::check_scene(scene, limit)?;
     }
     let mut network = build(scene)?;
+    // The floor first: one gradient, where the memory check runs a symbolic analysis.
+    crate::network::floor::check(scene, &mut network)?;
     if limit != u64::MAX {
         budget::check_network(scene, &network, limit, ordering)?;
     }
-    crate::network::floor::check(scene, &mut network)?;
     Ok(network)
 }
 
