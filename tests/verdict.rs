@@ -140,3 +140,53 @@ fn no_state_beyond_the_meaningful_residual_is_converged() {
     meaningful(&mut r);
     assert!(!r.converged && r.message.unwrap().contains("5.000e-3"));
 }
+
+/// The L-frame under its check load (P = 1e-5 EI/L²) with a tolerance far below its floor
+/// (5.7e-5): converged to the floor, and every command that starts from a solve takes it.
+#[test]
+fn commands_start_from_a_state_converged_to_the_floor() {
+    let text = std::fs::read_to_string("networks/l_frame.ron").unwrap();
+    let text = format!(
+        "{},\n    solver: Solver(tolerance: 1e-12),\n)\n",
+        text.trim_end()
+            .trim_end_matches(')')
+            .trim_end()
+            .trim_end_matches(',')
+    );
+    let d = tmpdir("lframe");
+    let scene = d.join("scene.ron");
+    std::fs::write(&scene, &text).unwrap();
+    let run = |args: &[&str]| {
+        let out = Command::new(env!("CARGO_BIN_EXE_rodnet"))
+            .args(args)
+            .arg("--quiet")
+            .output()
+            .unwrap();
+        (
+            out.status.code(),
+            String::from_utf8_lossy(&out.stderr).into_owned(),
+        )
+    };
+    let s = scene.to_str().unwrap();
+    let json = d.join("r.json");
+    let (code, stderr) = run(&["solve", s, "--json", json.to_str().unwrap()]);
+    assert_eq!(code, Some(0), "{stderr}");
+    assert!(stderr.contains("tolerance 1.0e-12"), "{stderr}");
+    let v: serde_json::Value =
+        serde_json::from_str(&std::fs::read_to_string(&json).unwrap()).unwrap();
+    assert_eq!(v["converged"], true);
+    assert_eq!(v["stopped_at_floor"], true);
+    // The deflection is the reference's (the scene's `reference`, from the analytic L-frame).
+    let err = v["reference"]["error"].as_f64().unwrap();
+    assert!(err < 1e-3, "reference error {err:e}");
+    let states = d.join("states");
+    for args in [
+        vec!["states", s, "--out-dir", states.to_str().unwrap()],
+        vec!["buckle", s],
+        vec!["solve", s, "--initial", json.to_str().unwrap()],
+        vec!["indent", s, "--at", "b:1", "--depth", "1e-4"],
+    ] {
+        let (code, stderr) = run(&args);
+        assert_eq!(code, Some(0), "{args:?}: {stderr}");
+    }
+}
