@@ -198,7 +198,10 @@ fn mechanism(model: &Model, rods: &[RodInfo], v: &[f64], f: &[f64]) -> Option<St
     if !moving_rods.iter().all(|r| moves_rigidly(model, v, r)) {
         return None;
     }
-    let body: Vec<usize> = moving_rods.iter().flat_map(|r| r.nodes.iter().copied()).collect();
+    let body: Vec<usize> = moving_rods
+        .iter()
+        .flat_map(|r| r.nodes.iter().copied())
+        .collect();
     if !angle_loaded && swings_down(model, v, f, &body, vmax) {
         return None;
     }
@@ -237,7 +240,10 @@ fn mechanism(model: &Model, rods: &[RodInfo], v: &[f64], f: &[f64]) -> Option<St
 /// torques are not dead forces on the body's nodes: not judged here.
 fn swings_down(model: &Model, v: &[f64], f: &[f64], body: &[usize], vmax: f64) -> bool {
     let driven = model.prescribed.iter().any(|p| p.start != p.end)
-        || model.prescribed_rotations.iter().any(|r| r.rotation != [0.0; 3])
+        || model
+            .prescribed_rotations
+            .iter()
+            .any(|r| r.rotation != [0.0; 3])
         || !model.staged.is_empty();
     let Some(((t, omega, c), res)) = rigid_fit(model, v, body).filter(|_| !driven) else {
         return false;
@@ -259,9 +265,9 @@ fn swings_down(model: &Model, v: &[f64], f: &[f64], body: &[usize], vmax: f64) -
         sub(r, scalef(a, dot(r, a)))
     };
     // Held: a node of the body fixed in all three coordinates lies on the line.
-    let held = body.iter().any(|&n| {
-        (0..3).all(|k| u.of_node(n, k).is_none()) && w * norm(offset(n)) <= RIGID * vmax
-    });
+    let held = body
+        .iter()
+        .any(|&n| (0..3).all(|k| u.of_node(n, k).is_none()) && w * norm(offset(n)) <= RIGID * vmax);
     if !held {
         return false;
     }
