@@ -5,7 +5,8 @@
 //! in it move rigidly (a legitimately soft bending mode of a very slender rod deforms its rod) and
 //! a loaded or driven node moves in it. An unsupported structure's rigid rotations are gauge
 //! modes, not mechanisms: they are projected out first (its translations are removed by the
-//! gauge node, `build/gauge.rs`). The description names the rods and, when they turn together as
+//! gauge node, `build/gauge.rs`). A rigid turn about a held line that dead loads can only swing
+//! down by at most a quarter turn is not one (`swings_down`). The description names the rods and, when they turn together as
 //! one rigid body, the axis.
 
 use crate::math::vec::{cross, dot, norm, scalef, sub};
