@@ -8,7 +8,7 @@
 mod support;
 
 use rodnet::pipeline::{settings_of, solve_scene};
-use support::roots::bisect_increasing;
+use support::hanging::catenary_sag;
 
 const LENGTH: f64 = 10.0;
 const SPAN: f64 = 9.0;
@@ -34,17 +34,6 @@ fn scene(edges: usize) -> rodnet::scene::Scene {
     rodnet::scene::parse("slack_wire.ron", &text).unwrap()
 }
 
-/// The inextensible catenary's parameter a from L = 2a sinh(S/(2a)) (L decreases with a), and
-/// its sag a (cosh(S/(2a)) − 1).
-fn catenary_sag() -> (f64, f64) {
-    let a = bisect_increasing(
-        |a| LENGTH - 2.0 * a * (SPAN / (2.0 * a)).sinh(),
-        0.1 * SPAN,
-        100.0 * SPAN,
-    );
-    (a, a * ((SPAN / (2.0 * a)).cosh() - 1.0))
-}
-
 /// Converges with default settings at every resolution, hangs in its vertical plane, and its sag
 /// approaches the catenary's. The wire is not a cable: its bending stiffness EI = 0.165 N·m²
 /// against the horizontal tension H = w·a = 1.36 N makes boundary layers of length
@@ -55,7 +44,7 @@ fn catenary_sag() -> (f64, f64) {
 /// 4.00 and 4.00), and every resolution's error against 600 edges shrinks with refinement.
 #[test]
 fn a_slack_wire_drawn_straight_sags_into_a_catenary_at_every_resolution() {
-    let (a, sag_c) = catenary_sag();
+    let (a, sag_c) = catenary_sag(LENGTH, SPAN);
     let area = std::f64::consts::PI * RADIUS * RADIUS;
     let (w, ei) = (DENSITY * area * G, E * area * RADIUS * RADIUS / 4.0);
     let ell = (ei / (w * a)).sqrt();

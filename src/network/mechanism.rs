@@ -5,7 +5,8 @@
 //! in it move rigidly (a legitimately soft bending mode of a very slender rod deforms its rod) and
 //! a loaded or driven node moves in it. An unsupported structure's rigid rotations are gauge
 //! modes, not mechanisms: they are projected out first (its translations are removed by the
-//! gauge node, `build/gauge.rs`). The description names the rods and, when they turn together as
+//! gauge node, `build/gauge.rs`). A rigid turn about a held line that dead loads can only swing
+//! down by at most a quarter turn is not one (`swings_down`). The description names the rods and, when they turn together as
 //! one rigid body, the axis.
 
 use crate::math::vec::{cross, dot, norm, scalef, sub};
@@ -198,6 +199,13 @@ fn mechanism(model: &Model, rods: &[RodInfo], v: &[f64], f: &[f64]) -> Option<St
     if !moving_rods.iter().all(|r| moves_rigidly(model, v, r)) {
         return None;
     }
+    let body: Vec<usize> = moving_rods
+        .iter()
+        .flat_map(|r| r.nodes.iter().copied())
+        .collect();
+    if !angle_loaded && swings_down(model, v, f, &body, vmax) {
+        return None;
+    }
     let names: Vec<String> = moving_rods
         .iter()
         .map(|r| format!("\"{}\"", r.name))
@@ -216,6 +224,70 @@ fn mechanism(model: &Model, rods: &[RodInfo], v: &[f64], f: &[f64]) -> Option<St
         "{what}: it costs no elastic energy and the loads act on it (add supports or joints that \
          resist it)"
     ))
+}
+
+/// Whether mode `v` turns one rigid body (the nodes `body`) about a line held by a fixed node,
+/// under dead loads (`f`, the gradient's rate of change: minus the loads) that can only swing it
+/// down by at most a quarter turn. Along a finite turn θ about a held line the elastic energy
+/// stays constant and the dead loads' potential is V(θ) = −P cos θ − Q sin θ, with
+/// P = Σ F·r⊥ (r⊥ the node's offset from the line; P > 0: the loads pull the body away from
+/// the line, a hanging pendulum) and Q = Σ F·(a × r⊥) (their moment about the line, a × r⊥ being
+/// the motion per unit turn): bounded, with its minimum at the θ* where
+/// (cos θ*, sin θ*) ∝ (P, Q). The turn cannot run away; where the minimum is within a quarter
+/// turn (P ≥ 0) the body hangs from the line as drawn or swings down to hang (a wire drawn
+/// sagging sideways), and Newton's steps get there. Drawn above the line (P < 0: a pinned
+/// portal or arch under a vertical load, an inverted pendulum) its only stable state is turned
+/// over, which is not the structure that was drawn: a mechanism. Prescribed motions and
+/// torques are not dead forces on the body's nodes: not judged here.
+fn swings_down(model: &Model, v: &[f64], f: &[f64], body: &[usize], vmax: f64) -> bool {
+    let driven = model.prescribed.iter().any(|p| p.start != p.end)
+        || model
+            .prescribed_rotations
+            .iter()
+            .any(|r| r.rotation != [0.0; 3])
+        || !model.staged.is_empty();
+    let Some(((t, omega, c), res)) = rigid_fit(model, v, body).filter(|_| !driven) else {
+        return false;
+    };
+    let w = norm(omega);
+    // One body turning (no slide along its axis: a screw is not a turn about a fixed line).
+    if res > RIGID || w == 0.0 {
+        return false;
+    }
+    let a = scalef(omega, 1.0 / w);
+    if dot(t, a).abs() > RIGID * vmax {
+        return false;
+    }
+    let t_perp = sub(t, scalef(a, dot(t, a)));
+    let p = crate::math::vec::add(c, scalef(cross(omega, t_perp), 1.0 / (w * w)));
+    let u = model.unknowns();
+    let offset = |n: usize| {
+        let r = sub(model.position(n), p);
+        sub(r, scalef(a, dot(r, a)))
+    };
+    // Held: a node of the body fixed in all three coordinates lies on the line.
+    let held = body
+        .iter()
+        .any(|&n| (0..3).all(|k| u.of_node(n, k).is_none()) && w * norm(offset(n)) <= RIGID * vmax);
+    if !held {
+        return false;
+    }
+    let (mut pp, mut q, mut size) = (0.0, 0.0, 0.0);
+    let mut seen = vec![false; model.layout.n_nodes()];
+    for &n in body {
+        if std::mem::replace(&mut seen[n], true) {
+            continue;
+        }
+        let load = scalef(motion(model, f, n), -1.0);
+        let r = offset(n);
+        pp += dot(load, r);
+        q += dot(load, cross(a, r));
+        size += norm(load) * norm(r);
+    }
+    // Neither pulling nor turning (loads along the line): neutral, left to the other tests.
+    // Level with the line (P = 0 to round-off: a body drawn in the horizontal plane through
+    // its hinge line) it swings down by a quarter turn.
+    pp.hypot(q) > 1e-9 * size && pp >= -1e-9 * size
 }
 
 /// Whether some rod that moves in mode `v` does not move rigidly (a rod's spin about its own

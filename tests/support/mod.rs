@@ -25,6 +25,7 @@
 pub mod buckling;
 pub mod elastica;
 pub mod elliptic;
+pub mod hanging;
 pub mod heavy;
 pub mod linear;
 pub mod ode;
