@@ -314,9 +314,8 @@ impl StepQp {
             }
             // W = P⁻¹ J_Aᵀ, one column per active row, kept across rounds.
             for &j in &active {
-                if !columns.contains_key(&j) {
-                    let col = self.column(j, &rows, chol);
-                    columns.insert(j, col);
+                if let std::collections::hash_map::Entry::Vacant(slot) = columns.entry(j) {
+                    slot.insert(self.column(j, &rows, chol));
                 }
             }
             let Some((dp, z)) = self.solve_on(&active, &rows, &columns, chol, g, &u) else {

@@ -80,9 +80,8 @@ impl StepQp {
                 return None;
             }
             for j in pending.drain(..) {
-                if !columns.contains_key(&j) {
-                    let col = self.column(j, rows, chol);
-                    columns.insert(j, col);
+                if let std::collections::hash_map::Entry::Vacant(slot) = columns.entry(j) {
+                    slot.insert(self.column(j, rows, chol));
                 }
                 active.push(j);
                 z.push(0.0);
