@@ -24,6 +24,8 @@ use clarabel::solver::{
 
 use super::linalg::SparseCholesky;
 
+mod dual;
+
 pub struct StepQp {
     n: usize,
     m: usize,
@@ -294,10 +296,12 @@ impl StepQp {
     /// the dense Schur complement S = J_A P⁻¹ J_Aᵀ: S z_A = J_A P⁻¹ g − c_A,
     /// d = P⁻¹(J_Aᵀ z_A − g). Constraints that touch with (almost) no force are degenerate for
     /// the interior point and land on either side of z = s; a few primal-dual active-set
-    /// rounds (drop rows with z < 0, add violated rows) settle them. False if no consistent
-    /// active set is found; the interior-point solution then stands.
+    /// rounds (drop rows with z < 0, add violated rows) settle them; when they cycle, the dual
+    /// active-set method (`qp/dual.rs`) finds the exact solution. False if neither does; the
+    /// interior-point solution then stands.
     fn polish(&mut self, chol: &mut SparseCholesky, g: &[f64], d: &mut [f64]) -> bool {
         let mut active: Vec<usize> = (0..self.m).filter(|&j| self.z[j] > self.slack[j]).collect();
+        let start = active.clone();
         let rows = self.row_ranges();
         let n = self.n;
         let mut u = g.to_vec();
@@ -311,12 +315,7 @@ impl StepQp {
             // W = P⁻¹ J_Aᵀ, one column per active row, kept across rounds.
             for &j in &active {
                 if let std::collections::hash_map::Entry::Vacant(slot) = columns.entry(j) {
-                    let mut col = vec![0.0; n];
-                    for k in rows[j].clone() {
-                        col[self.pattern[k].1] += self.jac[k];
-                    }
-                    chol.solve(&mut col);
-                    slot.insert(col);
+                    slot.insert(self.column(j, &rows, chol));
                 }
             }
             let Some((dp, z)) = self.solve_on(&active, &rows, &columns, chol, g, &u) else {
@@ -355,7 +354,19 @@ impl StepQp {
             next.sort_unstable();
             active = next;
         }
-        false
+        if start.len() > POLISH_MAX_ACTIVE || start.len() * n > POLISH_MAX_ENTRIES {
+            return false;
+        }
+        let exact = self.dual_active_set(&start, &rows, &mut columns, (chol, g, &u), slack_tol);
+        let Some((dp, active, z)) = exact else {
+            return false;
+        };
+        d.copy_from_slice(&dp);
+        self.z.iter_mut().for_each(|v| *v = 0.0);
+        for (&j, &zj) in active.iter().zip(&z) {
+            self.z[j] = zj;
+        }
+        true
     }
 
     /// The equality-constrained QP on `active` (see [`Self::polish`]), with iterative
