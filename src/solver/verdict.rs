@@ -72,15 +72,18 @@ pub(super) fn finish(
 fn at_floor(r: &mut NewtonReport, s: &NewtonSettings) {
     r.stopped_at_floor = true;
     r.converged = true;
+    // Past the meaningful floor `meaningful` takes the verdict back, and the tolerance reported
+    // stays the one used.
     if r.residual_floor > MEANINGFUL_FLOOR {
-        // `meaningful` takes the verdict back; the tolerance reported stays the one used.
-    } else if s.automatic_tolerance {
+        return;
+    }
+    if s.automatic_tolerance {
         r.tolerance = r.residual_floor;
     } else {
         r.message = Some(format!(
             "converged to the round-off floor: relative residual {:.3e} is above the tolerance \
              {:.1e} asked but below the floor {:.3e} that rounding the unknowns to doubles \
-             causes, and Newton's last step moved nothing; no state in doubles is closer to \
+             causes, where round-off stalls Newton; no state in doubles is closer to \
              equilibrium",
             r.residual, s.tolerance, r.residual_floor
         ));
