@@ -38,61 +38,89 @@ fn solve_cli(name: &str, text: &str) -> (Option<i32>, String, bool) {
     )
 }
 
+/// `rodnet solve` refuses `text` (exit 2, nothing written) at `field`, with a suggested value
+/// after `suggests`; returns that value.
+fn refused(name: &str, text: &str, field: &str, suggests: &str) -> f64 {
+    let (code, stderr, written) = solve_cli(name, text);
+    assert_eq!(code, Some(2), "{stderr}");
+    assert!(!written);
+    assert!(
+        stderr.contains(field) && stderr.contains("round-off floor"),
+        "{stderr}"
+    );
+    stderr
+        .split(suggests)
+        .nth(1)
+        .and_then(|s| s.split(' ').next())
+        .and_then(|s| s.parse().ok())
+        .unwrap_or_else(|| panic!("no suggested value in {stderr}"))
+}
+
+/// The value a refusal suggests works: the scene then solves, exit 0.
+fn solves(name: &str, text: &str) {
+    let (code, stderr, _) = solve_cli(name, text);
+    assert_eq!(code, Some(0), "{stderr}");
+}
+
 #[test]
 fn a_column_too_stiff_for_its_load_is_refused_at_its_modulus() {
     let text = std::fs::read_to_string("networks/euler_column.ron")
         .unwrap()
         .replace("young_modulus: 1e9", "young_modulus: 1e19");
-    let (code, stderr, written) = solve_cli("stiff", &text);
-    assert_eq!(code, Some(2), "{stderr}");
-    assert!(!written);
-    assert!(
-        stderr.contains("materials[\"steel\"].young_modulus") && stderr.contains("round-off floor"),
-        "{stderr}"
+    let field = "materials[\"steel\"].young_modulus";
+    let e = refused("stiff", &text, field, "young_modulus ≤ ");
+    solves(
+        "suggested-modulus",
+        &text.replace("young_modulus: 1e19", &format!("young_modulus: {e:e}")),
     );
-    // The modulus it suggests works: the load is then above round-off.
-    let e: f64 = stderr
-        .split("young_modulus ≤ ")
-        .nth(1)
-        .and_then(|s| s.split(' ').next())
-        .and_then(|s| s.parse().ok())
-        .unwrap_or_else(|| panic!("no suggested modulus in {stderr}"));
-    let text = text.replace("young_modulus: 1e19", &format!("young_modulus: {e:e}"));
-    let (code, stderr, _) = solve_cli("suggested", &text);
-    assert_eq!(code, Some(0), "{stderr}");
 }
 
 #[test]
 fn a_rod_subdivided_past_its_floor_is_refused_at_its_subdivision() {
-    let text = std::fs::read_to_string(CANTILEVER)
-        .unwrap()
-        .replace("subdivide: 40", "subdivide: 100000");
-    let (code, stderr, written) = solve_cli("fine", &text);
-    assert_eq!(code, Some(2), "{stderr}");
-    assert!(!written);
-    assert!(
-        stderr.contains("rods[0].subdivide") && stderr.contains("subdivide ≤ "),
-        "{stderr}"
+    let text = std::fs::read_to_string(CANTILEVER).unwrap();
+    let fine = text.replace("subdivide: 40", "subdivide: 100000");
+    let n = refused("fine", &fine, "rods[0].subdivide", "subdivide ≤ ");
+    solves(
+        "suggested-subdivision",
+        &text.replace("subdivide: 40", &format!("subdivide: {n}")),
     );
 }
 
+/// A translational and a rotational spring of 1e60 at an elastic joint (rotations are rounded
+/// to ε rad whatever their angle, so the second is seen too).
 #[test]
 fn a_joint_spring_beyond_doubles_is_refused_at_the_joint() {
-    let text = r#"Scene(
-    materials: { "m": Material(young_modulus: 1e9, poisson_ratio: 0.3, section: Circle(radius: 0.01)) },
+    let scene = |kind: &str| {
+        format!(
+            r#"Scene(
+    materials: {{ "m": Material(young_modulus: 1e9, poisson_ratio: 0.3, section: Circle(radius: 0.01)) }},
     rods: [
         Rod(name: "a", material: "m", points: [(0.0, 0.0, 0.0), (1.0, 0.0, 0.0)], subdivide: 8),
         Rod(name: "b", material: "m", points: [(1.0, 0.0, 0.0), (1.0, 1.0, 0.0)], subdivide: 8),
     ],
-    joints: [ Joint(name: "knee", at: [("a", 1), ("b", 0)],
-                    kind: Elastic(bending: 1e3, twist: 1e3, scissor: 1e3, translation: 1e60)) ],
+    joints: [ Joint(name: "knee", at: [("a", 1), ("b", 0)], kind: {kind}) ],
     supports: [ Support(rod: "a", vertex: 0, kind: Clamp) ],
     loads: [ Force(rod: "b", vertex: 1, force: (0.0, 0.0, -10.0)) ],
-)"#;
-    let (code, stderr, written) = solve_cli("spring", text);
-    assert_eq!(code, Some(2), "{stderr}");
-    assert!(!written);
-    assert!(stderr.contains("joints[0].kind"), "{stderr}");
+)"#
+        )
+    };
+    let translation = "Elastic(bending: 1e3, twist: 1e3, scissor: 1e3, translation: 1e60)";
+    let k = refused(
+        "spring",
+        &scene(translation),
+        "joints[0].kind",
+        "stiffness ≤ ",
+    );
+    solves(
+        "suggested-spring",
+        &scene(&translation.replace("1e60", &format!("{k:e}"))),
+    );
+    let rotation = "Elastic(bending: 1e60, twist: 1e60, scissor: 1e60)";
+    let c = refused("turn", &scene(rotation), "joints[0].kind", "stiffness ≤ ");
+    solves(
+        "suggested-turn",
+        &scene(&rotation.replace("1e60", &format!("{c:e}"))),
+    );
 }
 
 /// 10 to 10⁴ edges: converged, exit 0 by the verdict, the tip within DER's O(1/N²) error of
