@@ -9,13 +9,7 @@ mod support;
 
 use rodnet::pipeline::{settings_of, solve_scene};
 use support::hanging::catenary_sag;
-
-const LENGTH: f64 = 10.0;
-const SPAN: f64 = 9.0;
-const E: f64 = 2.1e11;
-const RADIUS: f64 = 1e-3;
-const DENSITY: f64 = 7850.0;
-const G: f64 = 9.81;
+use support::hanging::wire::{DENSITY, E, G, LENGTH, RADIUS, SPAN};
 
 fn scene(edges: usize) -> rodnet::scene::Scene {
     let text = format!(

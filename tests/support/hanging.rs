@@ -5,6 +5,17 @@
 use super::ode::integrate;
 use super::roots::bisect_increasing;
 
+/// The steel wire of the issue-36 scenes: 10 m long between two pins 9 m apart, r = 1 mm,
+/// under gravity (SI units).
+pub mod wire {
+    pub const LENGTH: f64 = 10.0;
+    pub const SPAN: f64 = 9.0;
+    pub const E: f64 = 2.1e11;
+    pub const RADIUS: f64 = 1e-3;
+    pub const DENSITY: f64 = 7850.0;
+    pub const G: f64 = 9.81;
+}
+
 /// The inextensible catenary of length `length` over `span`: its parameter a from
 /// L = 2a sinh(S/(2a)) (L decreases with a), and its sag a (cosh(S/(2a)) − 1).
 pub fn catenary_sag(length: f64, span: f64) -> (f64, f64) {
