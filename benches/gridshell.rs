@@ -9,7 +9,7 @@ mod common;
 use rodnet::gridshell::footprint::{footprint, HemisphereSpec};
 use rodnet::gridshell::formfind::DEFAULT_START_CAP;
 use rodnet::gridshell::job::run;
-use rodnet::network::assembly::{Assembly, HessianOut, HessianSlots};
+use rodnet::network::assembly::HessianSlots;
 use rodnet::network::build::build;
 use rodnet::network::model::Model;
 use rodnet::pipeline::{settings_of, solve_scene};
@@ -72,14 +72,7 @@ fn assembled(nd: bool) -> (Model, HessianSlots, SparseCholesky) {
     let (mut chol, slots) = SparseCholesky::with_order(m.n_free, &pairs, order.as_deref());
     let hs = m.hessian_slots(&slots);
     let mut g = vec![0.0; m.n_free];
-    m.assemble(&mut Assembly {
-        grad: &mut g,
-        full_grad: None,
-        hess: Some(HessianOut {
-            values: &mut chol.values,
-            slots: &hs,
-        }),
-    });
+    common::assemble(&m, &mut g, &mut chol, &hs);
     (m, hs, chol)
 }
 
@@ -87,16 +80,7 @@ fn assembled(nd: bool) -> (Model, HessianSlots, SparseCholesky) {
 fn hemisphere_assembly(bencher: divan::Bencher) {
     let (m, hs, mut chol) = assembled(false);
     let mut g = vec![0.0; m.n_free];
-    bencher.bench_local(|| {
-        m.assemble(&mut Assembly {
-            grad: &mut g,
-            full_grad: None,
-            hess: Some(HessianOut {
-                values: &mut chol.values,
-                slots: &hs,
-            }),
-        })
-    });
+    bencher.bench_local(|| common::assemble(&m, &mut g, &mut chol, &hs));
 }
 
 #[divan::bench(args = [false, true])]

@@ -19,7 +19,7 @@ mod common;
 use std::collections::BTreeMap;
 
 use rodnet::energy::Term;
-use rodnet::network::assembly::{Assembly, HessianOut, HessianSlots};
+use rodnet::network::assembly::HessianSlots;
 use rodnet::network::build::build;
 use rodnet::network::model::Model;
 use rodnet::scene::types::*;
@@ -122,16 +122,7 @@ fn grid_model() -> (Model, HessianSlots, SparseCholesky) {
 fn grid_assembly(bencher: divan::Bencher) {
     let (m, hs, mut chol) = grid_model();
     let mut g = vec![0.0; m.n_free];
-    bencher.bench_local(|| {
-        m.assemble(&mut Assembly {
-            grad: &mut g,
-            full_grad: None,
-            hess: Some(HessianOut {
-                values: &mut chol.values,
-                slots: &hs,
-            }),
-        })
-    });
+    bencher.bench_local(|| common::assemble(&m, &mut g, &mut chol, &hs));
 }
 
 /// The fused kernels alone (derivatives of every stencil of one kind, no scatter, one thread):
@@ -176,14 +167,7 @@ fn grid_symbolic(bencher: divan::Bencher) {
 fn grid_factorization(bencher: divan::Bencher) {
     let (m, hs, mut chol) = grid_model();
     let mut g = vec![0.0; m.n_free];
-    m.assemble(&mut Assembly {
-        grad: &mut g,
-        full_grad: None,
-        hess: Some(HessianOut {
-            values: &mut chol.values,
-            slots: &hs,
-        }),
-    });
+    common::assemble(&m, &mut g, &mut chol, &hs);
     bencher.bench_local(|| chol.factor(0.0).is_ok());
 }
 
@@ -246,14 +230,7 @@ fn chain_model(edges: usize) -> (Model, HessianSlots, SparseCholesky, f64) {
     let (mut chol, slots) = SparseCholesky::new(m.n_free, &m.hessian_pattern());
     let hs = m.hessian_slots(&slots);
     let mut g = vec![0.0; m.n_free];
-    m.assemble(&mut Assembly {
-        grad: &mut g,
-        full_grad: None,
-        hess: Some(HessianOut {
-            values: &mut chol.values,
-            slots: &hs,
-        }),
-    });
+    common::assemble(&m, &mut g, &mut chol, &hs);
     let mut shift = 1e-10 * chol.diagonal_scale();
     while chol.factor(shift).is_err() {
         shift *= 100.0;
@@ -265,16 +242,7 @@ fn chain_model(edges: usize) -> (Model, HessianSlots, SparseCholesky, f64) {
 fn chain_assembly(bencher: divan::Bencher, edges: usize) {
     let (m, hs, mut chol, _) = chain_model(edges);
     let mut g = vec![0.0; m.n_free];
-    bencher.bench_local(|| {
-        m.assemble(&mut Assembly {
-            grad: &mut g,
-            full_grad: None,
-            hess: Some(HessianOut {
-                values: &mut chol.values,
-                slots: &hs,
-            }),
-        })
-    });
+    bencher.bench_local(|| common::assemble(&m, &mut g, &mut chol, &hs));
 }
 
 #[divan::bench(args = [10_000, 30_000, 100_000], sample_count = 10)]
