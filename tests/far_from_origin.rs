@@ -93,6 +93,14 @@ fn check(path: &str, edit: impl Fn(Scene) -> Scene) {
     let floor = a.report.residual_floor.max(b.report.residual_floor);
     let resolution = SITE.iter().fold(0.0_f64, |m, x| m.max(x.abs())) * f64::EPSILON;
     let allowed = (1e-9 + 4.0 * floor) * largest + resolution;
+    println!(
+        "{path}: {} iterations, displacements differ by {:.2e} of the largest ({largest:.2e} m), \
+         floors {:.2e} / {:.2e}",
+        a.results.iterations,
+        diff / largest,
+        a.report.residual_floor,
+        b.report.residual_floor
+    );
     assert!(
         diff <= allowed,
         "{path}: displacements differ by {diff:.2e} m of {largest:.2e} m (allowed {allowed:.2e})"
