@@ -306,6 +306,8 @@ fn solve_and_write(label: &str, sc: &Scene, source: &Source, outputs: Outputs, q
         r.seconds,
         if !r.converged || r.solver.stable {
             ""
+        } else if r.solver.stability_note.is_some() {
+            " (stability not decided: dead moments are not conservative; solver.stability_note)"
         } else if r.solver.zero_modes > 0 {
             " (neutral, not stable: zero-stiffness modes that the loads leave alone, e.g. a rod \
              free to turn about the line through its supports; solver.zero_modes)"

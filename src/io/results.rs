@@ -251,6 +251,9 @@ pub struct SolverJson {
     /// neutral equilibrium).
     #[serde(default)]
     pub zero_modes: usize,
+    /// Why `stable` is false when the energy could not judge the state (dead moments).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub stability_note: Option<String>,
     /// Iterations of the path under the `buckle_toward` bias (included in `iterations`).
     #[serde(default)]
     pub biased_iterations: usize,
@@ -528,6 +531,7 @@ impl Results {
                 free_unknowns: eq.free_unknowns,
                 step_iterations: report.step_iterations.clone(),
                 zero_modes: report.zero_modes,
+                stability_note: report.stability_note.clone(),
                 biased_iterations: report.biased_iterations,
                 message: report.message.clone(),
             },

@@ -17,6 +17,7 @@ pub mod initial;
 pub mod joint;
 pub mod mechanism;
 pub mod model;
+pub mod nonconservative;
 pub mod positions;
 pub mod problem;
 pub mod projection;

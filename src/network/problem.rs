@@ -452,6 +452,12 @@ impl NewtonProblem for NetworkProblem<'_> {
     fn unknown_scales(&self, scales: &mut [f64]) {
         self.model.unknown_scales(scales)
     }
+    fn skew_stiffness(&self) -> f64 {
+        self.model.dead_torque_skew()
+    }
+    fn skew_image(&self, v: &[f64], out: &mut [f64]) {
+        self.model.dead_torque_image(v, out)
+    }
     fn num_constraints(&self) -> usize {
         self.model.contact.as_ref().map_or(0, |c| c.len())
     }

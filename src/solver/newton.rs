@@ -53,6 +53,12 @@ const ENERGY_CONVERGED: f64 = 1e-2;
 /// increment is cheaper.
 const INDEFINITE_STEPS: usize = 3;
 
+/// Why a stationary point is not called stable although no saddle escape left it.
+const UNDECIDED: &str = "stability not decided: the energy's Hessian has negative curvature \
+    that the dead moments' non-symmetric stiffness may remove (a dead moment is not \
+    conservative for 3-D rotations; the state is an equilibrium, and the energy cannot judge \
+    its stability)";
+
 /// How Newton iterations at one continuation parameter ended.
 pub(super) enum Outcome {
     /// Residual below the tolerance.
@@ -163,6 +169,7 @@ impl Newton {
         let mut last_energy = f64::INFINITY;
         let mut prev_energy = f64::INFINITY;
         let mut floor: Option<f64> = None;
+        self.report.stability_note = None;
         loop {
             let e0 = p.assemble(&mut self.g, Some(&mut self.chol.values));
             let mut res = p.relative_residual(&self.g);
@@ -229,6 +236,11 @@ impl Newton {
                         self.report.saddle_escapes += 1;
                         continue;
                     }
+                    Saddle::Undecided => {
+                        self.report.stable = false;
+                        self.report.stability_note = Some(UNDECIDED.into());
+                        return done(res);
+                    }
                     _ => {
                         self.report.stable = false;
                         return done(res);
@@ -263,10 +275,12 @@ impl Newton {
                     "Hessian could not be regularized at iteration {it} (residual {res:.3e})"
                 ));
             };
+            let newton_own = shift > 0.0 && qp_shift.is_none() && self.indefinite_step(p);
+            let shift = if newton_own { 0.0 } else { shift };
             if shift > 0.0 {
                 self.report.regularized_iterations += 1;
             }
-            if qp_shift.is_none() {
+            if qp_shift.is_none() && !newton_own {
                 self.d.iter_mut().zip(&self.g).for_each(|(d, g)| *d = -g);
                 let ts = Instant::now();
                 self.chol.solve(&mut self.d);

@@ -120,6 +120,18 @@ pub trait NewtonProblem {
     fn deforms(&mut self, _mode: &[f64]) -> bool {
         false
     }
+    /// The norm of the loads' non-symmetric stiffness in the unknowns divided by their scales
+    /// (`unknown_scales`): 0 for conservative loads. Dead moments are not conservative for 3-D
+    /// rotations; the energy's Hessian is the symmetric part of their tangent, and this bounds
+    /// how far the rest can move its eigenvalues (`Newton::escape_saddle`).
+    fn skew_stiffness(&self) -> f64 {
+        0.0
+    }
+    /// The image S·v of a direction `v` of the free unknowns under that skew stiffness, in
+    /// `out` (zero for conservative loads).
+    fn skew_image(&self, _v: &[f64], out: &mut [f64]) {
+        out.fill(0.0);
+    }
     /// Size of a perturbation along `direction` that is small for the problem's geometry.
     fn perturbation_size(&self, direction: &[f64]) -> f64;
     /// Characteristic size of each free unknown in its own unit (a length for positions, 1 for

@@ -3,6 +3,7 @@
 
 use std::time::Instant;
 
+use super::linalg::SparseCholesky;
 use super::newton::Newton;
 use super::problem::NewtonProblem;
 
@@ -13,6 +14,10 @@ pub(super) enum Saddle {
     Escaped,
     /// Negative curvature, but no energy decrease along it within round-off.
     NoDecrease,
+    /// Negative curvature of the energy's Hessian that the loads' skew stiffness (dead moments)
+    /// is large enough to move off the negative axis: the energy cannot tell whether the state
+    /// is unstable, and leaving it along that direction would leave an equilibrium.
+    Undecided,
 }
 
 impl Newton {
@@ -53,6 +58,31 @@ impl Newton {
             tau *= growth;
         }
         None
+    }
+
+    /// With non-conservative loads (`NewtonProblem::skew_stiffness`), a stationary point is an
+    /// equilibrium whatever the inertia of the energy's Hessian H, which is only the symmetric
+    /// part of the tangent; where H stays indefinite up to the equilibrium, the shifted step
+    /// (H + τW) would converge only linearly. Puts Newton's own step −H⁻¹g in `d` (LDLᵀ) when it
+    /// is accurate and descends the merit energy; false otherwise (the shifted step is used).
+    pub(super) fn indefinite_step<P: NewtonProblem>(&mut self, p: &P) -> bool {
+        if p.skew_stiffness() == 0.0 {
+            return false;
+        }
+        let ts = Instant::now();
+        self.report.factorizations += 1;
+        let ok = self.chol.factor_ldlt().is_ok() && {
+            self.d.iter_mut().zip(&self.g).for_each(|(d, g)| *d = -g);
+            self.chol.solve_ldlt(&mut self.d);
+            // Without pivoting, an indefinite factorization can lose accuracy: check the solve.
+            self.chol.multiply(&self.d, &mut self.trial);
+            let norm2 = |v: &mut dyn Iterator<Item = f64>| v.map(|x| x * x).sum::<f64>();
+            let err = norm2(&mut self.trial.iter().zip(&self.g).map(|(a, g)| a + g));
+            let slope: f64 = self.g.iter().zip(&self.d).map(|(g, d)| g * d).sum();
+            err.is_finite() && err <= 1e-16 * norm2(&mut self.g.iter().copied()) && slope < 0.0
+        };
+        self.report.factor_seconds += ts.elapsed().as_secs_f64();
+        ok
     }
 
     /// Largest |H_ii|·s_i²: the diagonal scale of the Hessian of the dimensionless unknowns.
@@ -114,6 +144,9 @@ impl Newton {
         if lambda >= -1e-12 * scale {
             return Saddle::ZeroModesOnly;
         }
+        if skew_stabilizes(&mut self.chol, p, (v, hv), -lambda) {
+            return Saddle::Undecided;
+        }
         // The side the problem prefers (`buckle_toward`), else a deterministic sign: largest
         // dimensionless component positive.
         let side = p.orientation(v);
@@ -149,6 +182,31 @@ impl Newton {
         }
         Saddle::NoDecrease
     }
+}
+
+/// Whether the dead moments' skew stiffness S may lift the negative curvature `kappa` of H
+/// along `v` (W-normalized, H v = −κ W v) off the negative axis. H + S is the whole tangent;
+/// to second order, S moves the eigenvalue −κ by Σⱼ (uⱼᵀS v)²/(λⱼ + κ) toward positive
+/// (vᵀS v = 0: S is skew), over the other eigenpairs (λⱼ, uⱼ) of H. With H + τW factored
+/// (τ > κ), wᵀ(H + τW)⁻¹w for w = S v is a lower bound of that sum: where even the bound
+/// reaches κ, the energy cannot tell an unstable state (a rod rolled into a ring by a dead
+/// end moment: the in-plane equilibrium is unique at every moment, yet H turns indefinite
+/// out of plane once M·L/GJ passes about π). Below it, S leaves the instability (a column
+/// past buckling with a small dead torque on its top). `w`: scratch.
+fn skew_stabilizes<P: NewtonProblem>(
+    chol: &mut SparseCholesky,
+    p: &P,
+    (v, w): (&[f64], &mut [f64]),
+    kappa: f64,
+) -> bool {
+    if p.skew_stiffness() == 0.0 {
+        return false;
+    }
+    p.skew_image(v, w);
+    let mut x = w.to_vec();
+    chol.solve(&mut x);
+    let lift: f64 = w.iter().zip(&x).map(|(a, b)| a * b).sum();
+    lift >= kappa
 }
 
 #[cfg(test)]

@@ -162,6 +162,8 @@ pub struct NewtonReport {
     /// Zero-stiffness modes of the final state that are not gauge modes (up to 4 counted): with
     /// no negative curvature, the state is neutrally stable (`stable` is false).
     pub zero_modes: usize,
+    /// Why `stable` is false without a saddle or zero mode found: the energy could not judge.
+    pub stability_note: Option<String>,
     /// Arc-length continuation only: its steps and the limit points met.
     pub arc_length_steps: usize,
     pub limit_points: Vec<LimitPoint>,
