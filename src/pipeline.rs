@@ -122,6 +122,7 @@ pub fn solve_stages(
         return Ok(sol);
     }
     let mut stages = Vec::new();
+    let mut events = Vec::new();
     for k in 0..=scene.stages.len() {
         if k > 0 {
             let sc = scene.stage(k);
@@ -131,6 +132,12 @@ pub fn solve_stages(
             let report = crate::network::solve(&mut network.model, settings);
             sol = finish(network, &sc, report, |_, _| {});
         }
+        // Each stage's results carry the events of the path so far, named by stage.
+        for e in &mut sol.results.path_events {
+            e.stage = Some(scene.stage_name(k).to_string());
+        }
+        events.append(&mut sol.results.path_events);
+        sol.results.path_events = events.clone();
         let this = StageJson::of(k, scene.stage_name(k), &sol.results);
         sol.results.stage = Some(this.clone());
         stages.push(this);

@@ -407,3 +407,66 @@ fn indent_reports_where_the_pushed_arch_bifurcates() {
     assert_eq!(lim.len(), 1);
     assert_eq!(lim[0][0].as_f64().unwrap(), curve[step][0]);
 }
+
+/// The arch of Q = 8 with a dead crown load `f` (N), in its own loads or in a stage "crown".
+fn loaded_arch(f: f64, staged: bool) -> rodnet::scene::types::Scene {
+    let load = format!(
+        r#"Force(rod: "arch", vertex: 32, force: (0.0, 0.0, {:e}))"#,
+        -f
+    );
+    let more = if staged {
+        format!("\n    stages: [Stage(name: \"crown\", loads: [{load}])],\n)")
+    } else {
+        format!("\n    loads: [{load}],\n)")
+    };
+    let text = arch_scene(8.0, 64, 0.002);
+    let text = format!("{}{more}", text.strip_suffix("\n)").unwrap());
+    rodnet::scene::parse("arch.ron", &text).unwrap()
+}
+
+/// Under load control past its stability limit, the arch's symmetric path bifurcates where the
+/// compression reaches P₂ (the crown force of `centre_push_bifurcation`, 4.1936e-2 N, the same
+/// on the symmetric path whatever holds the crown), and the S-shaped branch beyond is
+/// unstable under a dead load: the arch snaps through to its inverted state. Both are path
+/// events at the load factors that scale the load to those forces; a load below the limit has
+/// none. Measured at 64 edges: 4.1789e-2 N at both loads (−0.35 %, the discretization and
+/// shallow-theory error of the other checks here), the snap 0.15 % (0.06 N) later.
+#[test]
+fn load_control_past_the_limit_reports_the_bifurcation_and_the_snap() {
+    let (_, force) = theory(8.0, 0.002).centre_push_bifurcation();
+    for (f, staged) in [(0.06, false), (0.2, false), (0.06, true)] {
+        let scene = loaded_arch(f, staged);
+        let sol = rodnet::pipeline::solve_scene(&scene, &settings_of(&scene)).unwrap();
+        let r = &sol.results;
+        assert!(
+            r.converged && r.solver.stable,
+            "{f} N: {:?}",
+            r.solver.message
+        );
+        let ev = &r.path_events;
+        eprintln!("{f} N (staged {staged}): {ev:#?}");
+        use rodnet::solver::path_events::EventKind;
+        assert_eq!(ev.len(), 2, "{ev:?}");
+        assert_eq!(
+            [ev[0].kind, ev[1].kind],
+            [EventKind::Bifurcation, EventKind::Snap]
+        );
+        let at = ev[0].load_factor * f;
+        assert!((at / force - 1.0).abs() < 5e-3, "{at} N vs {force} N");
+        assert!(ev[1].load_factor >= ev[0].load_factor);
+        assert!(ev[1].load_factor * f < 1.01 * force, "{ev:?}");
+        let stage = staged.then(|| "crown".to_string());
+        assert!(ev.iter().all(|e| e.stage == stage), "{ev:?}");
+        // Snapped to the inverted branch: the crown below the supports.
+        let crown = r.rods[0].points[32][2];
+        assert!(crown < -0.01, "crown {crown}");
+    }
+    let scene = loaded_arch(0.03, false);
+    let sol = rodnet::pipeline::solve_scene(&scene, &settings_of(&scene)).unwrap();
+    assert!(
+        sol.results.path_events.is_empty(),
+        "{:?}",
+        sol.results.path_events
+    );
+    assert!(sol.results.rods[0].points[32][2] > 0.01);
+}

@@ -315,6 +315,18 @@ fn solve_and_write(label: &str, sc: &Scene, source: &Source, outputs: Outputs, q
             " (unstable: the Hessian has a direction of negative curvature)"
         }
     );
+    for e in &r.path_events {
+        let stage = e
+            .stage
+            .as_ref()
+            .map_or(String::new(), |s| format!(" of stage \"{s}\""));
+        eprintln!(
+            "warning: {label}: the load path passed a {} at load factor {:.6}{stage}: {}",
+            e.kind.name(),
+            e.load_factor,
+            e.detail
+        );
+    }
     if let Some(x) = &r.extrapolation {
         print_extrapolation(label, x);
     }

@@ -384,6 +384,42 @@ pub struct Results {
     /// Scenes with `stages`, in the last stage's results: every stage solved, in order.
     #[serde(default, skip_serializing_if = "Vec::is_empty")]
     pub stages: Vec<StageJson>,
+    /// Limit points, bifurcations and snaps the load path passed (every stage's, in a staged
+    /// scene's last results); empty when the path passed none.
+    #[serde(default)]
+    pub path_events: Vec<PathEventJson>,
+}
+
+/// One event of the load path (contract: `kind`, `load_factor`, `stage`; `detail` extends).
+#[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
+pub struct PathEventJson {
+    pub kind: crate::solver::path_events::EventKind,
+    pub load_factor: f64,
+    /// The stage whose loads the load factor scales; null for the scene's own loads.
+    pub stage: Option<String>,
+    pub detail: String,
+}
+
+impl PathEventJson {
+    /// The events of one solve: its load-controlled path's and its arc-length limit points.
+    pub fn of(report: &NewtonReport) -> Vec<PathEventJson> {
+        let events = report.path_events.iter().map(|e| PathEventJson {
+            kind: e.kind,
+            load_factor: e.load_factor,
+            stage: None,
+            detail: e.detail.clone(),
+        });
+        let limits = report.limit_points.iter().map(|l| PathEventJson {
+            kind: crate::solver::path_events::EventKind::LimitPoint,
+            load_factor: l.load_factor,
+            stage: None,
+            detail: format!(
+                "the load factor stopped rising along the arc-length path (step {})",
+                l.step
+            ),
+        });
+        events.chain(limits).collect()
+    }
 }
 
 /// One load stage's outcome (`stage`, `stages`).
@@ -514,6 +550,7 @@ impl Results {
                 steps: report.arc_length_steps,
                 limit_points: report.limit_points.clone(),
             }),
+            path_events: PathEventJson::of(report),
             energy: eq.energy.into(),
             rods,
             joints,

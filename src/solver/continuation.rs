@@ -6,6 +6,7 @@ use std::time::{Duration, Instant};
 use super::linalg::SparseCholesky;
 use super::newton::{Limits, Newton, Outcome};
 use super::ordering::factorization;
+use super::path_events::{bifurcation, Judged};
 use super::problem::NewtonProblem;
 use super::qp::StepQp;
 use super::settings::{ConstraintReport, NewtonReport, NewtonSettings};
@@ -311,6 +312,7 @@ impl Path {
                 next = target;
             }
             let saved = p.snapshot();
+            let start = p.unknown_positions();
             match prev.last() {
                 Some((lp, _)) if self.lam > *lp => self.predict(p, prev, next, &saved),
                 Some(_) => p.set_continuation(self.load(next)),
@@ -354,8 +356,15 @@ impl Path {
             // step, which does not judge, and keep the verdict of the one before.)
             lim.judge_stability = next >= 1.0 || s.intermediate;
             let before = st.report.iterations;
+            let predicted = p.unknown_positions();
+            let turns = (st.report.regularized_iterations, st.report.saddle_escapes);
+            st.escaped = None;
             match st.iterate(p, s, &lim, k) {
                 o @ (Outcome::Converged | Outcome::AtFloor) => {
+                    let ends = (self.load(self.lam), self.load(next));
+                    if let (Some(start), Some(predicted)) = (&start, &predicted) {
+                        judge_substep(st, p, (&saved, ends), (start, predicted), turns);
+                    }
                     st.report.substeps += 1;
                     if prev.len() == HISTORY {
                         prev.remove(0);
@@ -380,6 +389,57 @@ impl Path {
         }
         last
     }
+}
+
+/// Records the path event of a converged sub-step between the load factors `ends`, if any: a
+/// snap, else a bifurcation where the saddle escape ran (located from the curvature of its
+/// direction at the sub-step's start, `saved`). `turns`: the regularized iterations and saddle
+/// escapes counted before the sub-step.
+fn judge_substep<P: NewtonProblem>(
+    st: &mut Newton,
+    p: &mut P,
+    (saved, ends): (&P::Snapshot, (f64, f64)),
+    (start, predicted): (&[[f64; 3]], &[[f64; 3]]),
+    turns: (usize, usize),
+) {
+    let Some(end) = p.unknown_positions() else {
+        return;
+    };
+    let judged = Judged {
+        from: ends.0,
+        to: ends.1,
+        start,
+        predicted,
+        end: &end,
+        regularized: st.report.regularized_iterations - turns.0,
+        escapes: st.report.saddle_escapes - turns.1,
+    };
+    // Sub-steps that escape one after another leave the same bifurcation (the new branch is
+    // shallow near it, and the next prediction may fall back onto the old one): one event, and
+    // what the state does while it leaves (a column's √ growth, an arch's snap to its inverted
+    // state) is that bifurcation's consequence, not another event.
+    let leaving = judged.escapes > 0;
+    let was_leaving = std::mem::replace(&mut st.leaving_path, leaving);
+    if !leaving && !was_leaving {
+        if let Some(e) = judged.snap() {
+            st.report.path_events.push(e);
+        }
+        return;
+    }
+    let Some((v, at_end)) = st.escaped.take().filter(|_| leaving && !was_leaving) else {
+        return;
+    };
+    // The direction's curvature at the sub-step's start: the Hessian there, then back. (The
+    // values are the next iteration's to assemble again.)
+    let now = p.snapshot();
+    p.restore(saved);
+    p.assemble(&mut st.g, Some(&mut st.chol.values));
+    st.chol.multiply(&v, &mut st.c);
+    let at_start: f64 = v.iter().zip(&st.c).map(|(a, b)| a * b).sum();
+    p.restore(&now);
+    st.report
+        .path_events
+        .push(bifurcation(ends.0, ends.1, at_start, at_end));
 }
 
 /// Weights wᵢ of the earlier converged states (parameters sᵢ, oldest first) in the prediction

@@ -7,6 +7,7 @@ pub mod line_search;
 mod modes;
 pub mod newton;
 pub mod ordering;
+pub mod path_events;
 pub mod pool;
 pub mod problem;
 pub mod qp;

@@ -124,6 +124,11 @@ pub(super) struct Newton {
     pub(super) scales: Vec<f64>,
     pub(super) weights: Vec<f64>,
     pub(super) shift_memory: f64,
+    /// The first saddle escape since it was last taken: its direction (W-normalized) and the
+    /// curvature along it (`path_events`: where the path bifurcated).
+    pub(super) escaped: Option<(Vec<f64>, f64)>,
+    /// The last converged sub-step of the path escaped a saddle.
+    pub(super) leaving_path: bool,
     pub(super) report: NewtonReport,
 }
 
@@ -146,6 +151,8 @@ impl Newton {
             scales: vec![1.0; n],
             weights: vec![1.0; n],
             shift_memory: 0.0,
+            escaped: None,
+            leaving_path: false,
             report: NewtonReport::default(),
         }
     }

@@ -176,6 +176,9 @@ impl Newton {
             let e = p.trial_energy(v, alpha);
             if e.is_finite() && e < e0 - 1e-12 * e0.abs() {
                 p.accept(v, alpha);
+                if self.escaped.is_none() {
+                    self.escaped = Some((v.iter().map(|x| x / size).collect(), lambda));
+                }
                 return Saddle::Escaped;
             }
             alpha *= 0.5;

@@ -164,6 +164,8 @@ pub struct NewtonReport {
     pub zero_modes: usize,
     /// Why `stable` is false without a saddle or zero mode found: the energy could not judge.
     pub stability_note: Option<String>,
+    /// Bifurcations and snaps met along a load-controlled path (`path_events.rs`).
+    pub path_events: Vec<super::path_events::PathEvent>,
     /// Arc-length continuation only: its steps and the limit points met.
     pub arc_length_steps: usize,
     pub limit_points: Vec<LimitPoint>,
