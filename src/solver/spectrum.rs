@@ -25,7 +25,7 @@ pub struct Spectrum {
     pub values: Vec<f64>,
     /// W-orthonormal, over the free unknowns.
     pub vectors: Vec<Vec<f64>>,
-    /// The Hessian's scaled diagonal (J): eigenvalues below 1e-10 of it are zero.
+    /// The Hessian's scaled diagonal (J), the scale of round-off.
     pub scale: f64,
     /// Largest ‖Hu − λWu‖_W⁻¹ over the scale among the returned pairs.
     pub residual: f64,
@@ -40,8 +40,8 @@ pub struct Spectrum {
 }
 
 impl Spectrum {
-    /// Whether eigenvalue `i` is zero: below 1e-10 of the Hessian's scaled diagonal, and not
-    /// resolved from zero (see [`zero_band`]).
+    /// Whether eigenvalue `i` is zero: not resolved from zero, and negligible against the
+    /// structure's softest physical stiffness (see [`zero_band`]).
     pub fn is_zero(&self, i: usize) -> bool {
         self.values[i].abs() < self.zero_band[i]
     }
@@ -49,18 +49,22 @@ impl Spectrum {
 
 /// How far from zero an eigenvalue must be to count as resolved (J): above its Ritz residual
 /// ‖Hu − λWu‖_W⁻¹ (an eigenvalue of H lies within it), above ten times the gradient's size
-/// ‖g‖_W⁻¹ (a symmetry's zero mode at a state off equilibrium by g is lifted by about ‖g‖
-/// over the size of the symmetry's motion, itself at least about one in W's units), and above
-/// round-off (1e-13 of the scale); at most 1e-10 of the scale, as zero has always been taken.
-/// The cap alone called a slender rod's soft bending modes zero at fine discretizations, the
-/// scale being the stretch stiffness (∝ n) and the soft modes' eigenvalues ∝ 1/n: a clamped
-/// shallow arch's inverted state, n = 64, near its stability threshold (λ ≈ 1e-11 of the scale,
-/// residual 1e-13; docs/stability.md).
-pub(super) fn zero_band(residual: f64, gradient: f64, scale: f64) -> f64 {
+/// ‖g‖_W⁻¹ (`gradient`: a symmetry's zero mode at a state off equilibrium by g is lifted by
+/// about ‖g‖ over the size of the symmetry's motion, itself at least about one in W's units;
+/// pass 0 for a mode that deforms a rod, which is no symmetry's), and above round-off (1e-13
+/// of the scale). What residual and gradient add is capped twice: at 1e-10 of the scale, as
+/// zero has always been taken, and at `physical` (`NewtonProblem::zero_stiffness`), a
+/// negligible fraction of the softest stiffness a rod of the structure can have. The scale
+/// (the stretch stiffness, ∝ n) alone called a slender rod's soft bending modes zero at fine
+/// discretizations, their eigenvalues falling as 1/n: a clamped cantilever at 1000 to 10⁴
+/// edges, whose converged state's gradient (the residual floor grows with n) lifted the band
+/// above its two lowest modes (docs/stability.md).
+pub(super) fn zero_band(residual: f64, gradient: f64, scale: f64, physical: f64) -> f64 {
     (2.0 * residual)
         .max(10.0 * gradient)
-        .max(1e-13 * scale)
         .min(1e-10 * scale)
+        .min(physical)
+        .max(1e-13 * scale)
 }
 
 /// The `k` lowest eigenpairs of the problem's Hessian at its current state.
@@ -90,11 +94,13 @@ pub fn lowest_modes<P: NewtonProblem>(
     let mut hv = vec![0.0; n];
     let mut residual: f64 = 0.0;
     let gradient = nt.gradient_norm();
+    let physical = p.zero_stiffness();
     let mut band = Vec::with_capacity(pairs.len());
     for (l, u) in &pairs {
         let r = nt.ritz_residual(*l, u, &mut hv);
         residual = residual.max(r / scale);
-        band.push(zero_band(r, gradient, scale));
+        let g = if p.deforms(u) { 0.0 } else { gradient };
+        band.push(zero_band(r, g, scale, physical));
     }
     Ok(Spectrum {
         values: pairs.iter().map(|p| p.0).collect(),
