@@ -274,11 +274,12 @@ pub fn rods_now(net: &Network) -> Shape {
     rods_at(net, |n| net.model.world_position(n))
 }
 
-/// Fraction of the softest physical stiffness below which an eigenvalue that residuals or the
-/// gradient leave unresolved counts as zero: six decades under EI/L⁴ leaves room for modes
-/// softer than one rod's (a chain or coil of rods longer than the structure's span, a rod
-/// bent in one mode over (1e6)^¼ ≈ 30 times its length).
-const NEGLIGIBLE: f64 = 1e-6;
+/// Fraction of the softest physical stiffness below which a deforming mode's eigenvalue that
+/// residuals or round-off leave unresolved counts as zero. A rod's softest bending mode is
+/// about 12 EI ē³/L⁴: three decades under EI ē³/L⁴ leave room for modes softer than one rod's
+/// (a chain or coil of rods ten times longer than the structure's span: 12/10⁴), while a
+/// mode that is zero only to round-off (a bifurcation point) stays zero up to 10⁻³ of it.
+const NEGLIGIBLE: f64 = 1e-3;
 
 /// An eigenvalue (J, in the solver's metric W, for a W-unit mode) negligible against the
 /// softest bending stiffness a rod of the structure can have: NEGLIGIBLE · EI_min ē³ / L⁴,

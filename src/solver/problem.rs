@@ -115,10 +115,10 @@ pub trait NewtonProblem {
     fn gauge_only(&mut self, _modes: &[Vec<f64>]) -> bool {
         false
     }
-    /// An eigenvalue (J, for a W-unit mode) negligible against the softest stiffness the
-    /// problem's structure can physically have: the most that residuals and gradients may lift a
-    /// zero eigenvalue by before it counts as resolved (`spectrum::zero_band`). Default
-    /// infinite (no physical scale known: the band's other caps apply).
+    /// An eigenvalue (J, for a W-unit mode) negligible against the softest stiffness that a
+    /// mode deforming the problem's structure can physically have: the widest band around
+    /// zero for such a mode (`spectrum::mode_band`). Default infinite (no physical scale
+    /// known: the band's other caps apply).
     fn zero_stiffness(&mut self) -> f64 {
         f64::INFINITY
     }
