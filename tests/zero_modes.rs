@@ -124,8 +124,8 @@ fn free_rings_have_only_their_rigid_turns_as_zero_modes() {
     assert!((scaled[1] / scaled[2] - 1.0).abs() < 1e-3, "{scaled:?}");
 }
 
-/// A straight rod held by a Pin at one end and turned about its own axis by a torque at the
-/// other: nothing resists the spin. Named a mechanism at the start (exit 1), not 1000 Newton
+/// A straight rod held by a Pin (or a Ball joint) at one end and turned about its own axis by
+/// a torque at the other: nothing resists the spin. Named a mechanism at the start (exit 1), not 1000 Newton
 /// iterations without convergence.
 #[test]
 fn rod_spun_on_a_pin_is_a_mechanism() {
@@ -141,6 +141,25 @@ fn rod_spun_on_a_pin_is_a_mechanism() {
     let d = r["mechanism"]["description"].as_str().unwrap();
     assert!(d.contains("spin of rod \"shaft\""), "{d}");
     assert!(r["iterations"].as_u64().unwrap() < 10);
+    // The same shaft on a Ball joint atop a clamped post, its far end on a Roller: the spin
+    // is free as on the Pin.
+    let ball = r#"Scene(
+        materials: { "steel": Material(young_modulus: 1e9, poisson_ratio: 0.3, section: Circle(radius: 0.01)) },
+        rods: [
+            Rod(name: "post", material: "steel", points: [(0.0, 0.0, -1.0), (0.0, 0.0, 0.0)], subdivide: 10),
+            Rod(name: "shaft", material: "steel", points: [(0.0, 0.0, 0.0), (1.0, 0.0, 0.0)], subdivide: 20),
+        ],
+        joints: [ Joint(name: "ball", at: [("post", 1), ("shaft", 0)], kind: Ball) ],
+        supports: [
+            Support(rod: "post", vertex: 0, kind: Clamp),
+            Support(rod: "shaft", vertex: 1, kind: Roller(normal: (0.0, 0.0, 1.0))),
+        ],
+        loads: [ Torque(rod: "shaft", vertex: 1, torque: (1.0, 0.0, 0.0)) ],
+    )"#;
+    let (out, r) = solve("spun-ball", ball, 2);
+    assert_eq!(out.status.code(), Some(1), "{out:?}");
+    let d = r["mechanism"]["description"].as_str().unwrap();
+    assert!(d.contains("spin of rod \"shaft\""), "{d}");
     // With the spin held by a clamp instead, the same torque twists the rod: no mechanism.
     let held = scene.replace("kind: Pin", "kind: Clamp");
     let (out, r) = solve("spun-held", &held, 2);
