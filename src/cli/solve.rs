@@ -330,6 +330,9 @@ fn solve_and_write(label: &str, sc: &Scene, source: &Source, outputs: Outputs, q
     if let Some(x) = &r.extrapolation {
         print_extrapolation(label, x);
     }
+    if let Some(st) = &modes {
+        print_modes(label, st);
+    }
     if r.converged {
         if let Some(m) = &sol.report.message {
             eprintln!("rodnet: {m}");
@@ -343,6 +346,39 @@ fn solve_and_write(label: &str, sc: &Scene, source: &Source, outputs: Outputs, q
         );
         EXIT_NOT_CONVERGED
     }
+}
+
+/// The `--modes` eigenvalues and verdict on stderr, as the results JSON's `stability` has them.
+fn print_modes(label: &str, st: &crate::network::stability::Stability) {
+    let values: Vec<String> = st.eigenvalues.iter().map(|l| format!("{l:.6e}")).collect();
+    let verdict = match (&st.zero_kind, st.stable) {
+        _ if st.negative > 0 => format!(
+            "unstable ({}{} negative)",
+            if st.negative_at_least {
+                "at least "
+            } else {
+                ""
+            },
+            st.negative
+        ),
+        (Some(kind), _) => format!(
+            "{} ({} zero mode(s), {kind})",
+            if st.stable { "stable" } else { "not stable" },
+            st.zero_modes
+        ),
+        (None, true) => "stable".to_string(),
+        (None, false) => "not stable".to_string(),
+    };
+    eprintln!(
+        "{label}: lowest {} eigenvalue(s) (N/m): {}; {verdict}{}",
+        values.len(),
+        values.join(", "),
+        if st.converged {
+            ""
+        } else {
+            " (eigenvalues not settled)"
+        }
+    );
 }
 
 fn write_files(files: &[(PathBuf, Vec<u8>)]) -> Result<(), String> {

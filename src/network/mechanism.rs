@@ -176,19 +176,29 @@ fn mechanism(model: &Model, rods: &[RodInfo], v: &[f64], f: &[f64]) -> Option<St
     let moves: Vec<f64> = (0..nn).map(|n| norm(motion(model, v, n))).collect();
     let loads: Vec<f64> = (0..nn).map(|n| norm(motion(model, f, n))).collect();
     let (vmax, fmax) = (max(&moves), max(&loads));
-    if vmax == 0.0 {
+    let angles = || {
+        model.free.iter().enumerate().filter_map(|(var, &i)| {
+            (i != crate::variables::FIXED && model.kind(var) == VarKind::Angle)
+                .then_some(i as usize)
+        })
+    };
+    // Torques count as loads too (a rod spun about its axis by a torque alone).
+    let tmax = angles().map(|i| f[i].abs()).fold(0.0, f64::max);
+    let size = fmax * model.length_scale + tmax;
+    if size == 0.0 {
         return None;
     }
-    let moving = |n: usize| moves[n] > 1e-3 * vmax;
     // Excited: a loaded (or driven) node moves, or a loaded angle (a torque) turns.
-    let node_loaded = (0..nn).any(|n| moving(n) && loads[n] > 1e-9 * fmax.max(f64::MIN_POSITIVE));
-    let angle_loaded = model.free.iter().enumerate().any(|(var, &i)| {
-        i != crate::variables::FIXED
-            && model.kind(var) == VarKind::Angle
-            && f[i as usize].abs() > 1e-12 * fmax.max(1e-300) * model.length_scale
-            && v[i as usize].abs() > 1e-6
-    });
-    if fmax == 0.0 || !(node_loaded || angle_loaded) {
+    let angle_loaded = angles().any(|i| f[i].abs() > 1e-12 * size && v[i].abs() > 1e-6);
+    let turn = angles().map(|i| v[i].abs()).fold(0.0, f64::max);
+    // No node moves (to round-off of the angles' motion, counted as ē·θ): rods spinning
+    // about their own centrelines.
+    if vmax <= 1e-9 * turn * model.mean_edge() {
+        return spin(model, rods, v, turn).filter(|_| angle_loaded);
+    }
+    let moving = |n: usize| moves[n] > 1e-3 * vmax;
+    let node_loaded = (0..nn).any(|n| moving(n) && loads[n] > 1e-9 * fmax);
+    if !(node_loaded || angle_loaded) {
         return None;
     }
     let moving_rods: Vec<&RodInfo> = rods
@@ -223,6 +233,37 @@ fn mechanism(model: &Model, rods: &[RodInfo], v: &[f64], f: &[f64]) -> Option<St
     Some(format!(
         "{what}: it costs no elastic energy and the loads act on it (add supports or joints that \
          resist it)"
+    ))
+}
+
+/// The rods that spin rigidly about their own centrelines in mode `v`, which moves no node
+/// (every edge angle of a moving rod turns alike: an isotropic rod's spin costs no energy),
+/// described; None if some moving rod twists instead. `turn` is the largest angle motion.
+fn spin(model: &Model, rods: &[RodInfo], v: &[f64], turn: f64) -> Option<String> {
+    let u = model.unknowns();
+    let angle = |e: usize| u.of(model.layout.theta(e)).map_or(0.0, |i| v[i]);
+    let mut names = Vec::new();
+    for r in rods {
+        let t: Vec<f64> = r.edges.iter().map(|&e| angle(e)).collect();
+        if t.iter().all(|a| a.abs() <= 1e-3 * turn) {
+            continue;
+        }
+        let mean = t.iter().sum::<f64>() / t.len() as f64;
+        if t.iter().any(|a| (a - mean).abs() > RIGID * turn) {
+            return None;
+        }
+        names.push(format!("\"{}\"", r.name));
+    }
+    if names.is_empty() {
+        return None;
+    }
+    let s = if names.len() == 1 { "" } else { "s" };
+    Some(format!(
+        "spin of rod{s} {} about {} own centreline{s}: it costs no elastic energy and a torque \
+         acts on it (add supports or joints that hold the rod's turn about its axis, e.g. a \
+         Clamp)",
+        names.join(", "),
+        if names.len() == 1 { "its" } else { "their" }
     ))
 }
 

@@ -367,6 +367,9 @@ impl NewtonProblem for NetworkProblem<'_> {
     fn deforms(&mut self, mode: &[f64]) -> bool {
         crate::network::mechanism::deforms(self.model, self.rods, mode)
     }
+    fn zero_stiffness(&mut self) -> f64 {
+        crate::network::stability::zero_stiffness(self.model, self.rods)
+    }
     fn orientation(&self, direction: &[f64]) -> f64 {
         let Some(t) = self.toward else { return 0.0 };
         let m = &*self.model;

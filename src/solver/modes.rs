@@ -20,7 +20,8 @@ impl Newton {
     /// (`spectrum::zero_band`): a slender rod's softest bending modes fall below 1e-10 of the
     /// scale (the stretch stiffness) at fine discretizations, and a clamped cantilever with
     /// r/L = 1e-3 was called neutral from 320 edges on (and, with the gradient's share of the
-    /// band applied to modes that deform rods, still at 1280).
+    /// band applied to modes that deform rods, still at 1280, and with the round-off floor
+    /// uncapped by the rods' physical stiffness, at 10⁴: `spectrum::mode_band`).
     pub(super) fn gauge_modes_only<P: super::NewtonProblem>(&mut self, p: &mut P) -> bool {
         let scale = self.scaled_diagonal().max(f64::MIN_POSITIVE);
         let gradient = self.gradient_norm();
@@ -29,9 +30,8 @@ impl Newton {
         for (l, u) in self.lowest_modes(4) {
             let residual = self.ritz_residual(l * scale, &u, &mut hv);
             // The gradient's share of the band is for a symmetry's zero mode, lifted by a state
-            // off equilibrium; a mode that deforms its rods is no symmetry's.
-            let g = if p.deforms(&u) { 0.0 } else { gradient };
-            if l.abs() * scale < super::spectrum::zero_band(residual, g, scale) {
+            // off equilibrium; a mode that deforms its rods is no symmetry's, and costs bending.
+            if l.abs() * scale < super::spectrum::mode_band(p, &u, residual, gradient, scale) {
                 zero.push(u);
             }
         }

@@ -115,6 +115,13 @@ pub trait NewtonProblem {
     fn gauge_only(&mut self, _modes: &[Vec<f64>]) -> bool {
         false
     }
+    /// An eigenvalue (J, for a W-unit mode) negligible against the softest stiffness that a
+    /// mode deforming the problem's structure can physically have: the widest band around
+    /// zero for such a mode (`spectrum::mode_band`). Default infinite (no physical scale
+    /// known: the band's other caps apply).
+    fn zero_stiffness(&mut self) -> f64 {
+        f64::INFINITY
+    }
     /// Whether `mode` deforms the structure (some part that moves in it does not move
     /// rigidly): then it is no symmetry's zero mode. Default false (unknown).
     fn deforms(&mut self, _mode: &[f64]) -> bool {
