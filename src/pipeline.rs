@@ -175,11 +175,12 @@ pub fn solve_scene_from_joints(
     joints: Option<&[String]>,
 ) -> Result<Solution, JobError> {
     let mut network = build_within_limit(scene, settings.ordering).map_err(JobError::Scene)?;
+    let rest = network.model.state.clone();
+    crate::network::initial::place(&mut network, initial).map_err(JobError::Refused)?;
+    // After the rods: a file of another scene is named by its first rod that does not fit.
     if let Some(names) = joints {
         crate::network::initial::check_joints(&network, names).map_err(JobError::Refused)?;
     }
-    let rest = network.model.state.clone();
-    crate::network::initial::place(&mut network, initial).map_err(JobError::Refused)?;
     // A start that needs more than this is no restart: the solve from rest is then the better
     // path (a start that violates the scene's bounds, a load that changes the shape entirely).
     let budget = settings.max_iterations.min(RESTART_ITERATIONS);

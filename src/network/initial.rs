@@ -29,13 +29,6 @@ pub fn place(net: &mut Network, rods: &[RodState]) -> Result<(), String> {
         })
         .fold(1e-300, f64::max);
     let (centre, reach) = reach(net);
-    if rods.len() != net.rods.len() {
-        return Err(format!(
-            "the initial results hold {} rods, the scene {}: they are not a state of this scene",
-            rods.len(),
-            net.rods.len()
-        ));
-    }
     for (ri, info) in net.rods.iter().enumerate() {
         let Some(r) = rods.iter().find(|r| r.name == info.name) else {
             return Err(format!(
@@ -99,6 +92,21 @@ pub fn place(net: &mut Network, rods: &[RodState]) -> Result<(), String> {
             }
             q[layout.theta(e)] = t;
         }
+    }
+    // Every scene rod was found above: a count that differs means rods the scene does not have.
+    if rods.len() != net.rods.len() {
+        let extra = rods
+            .iter()
+            .find(|r| !net.rods.iter().any(|i| i.name == r.name))
+            .map_or(String::new(), |r| {
+                format!("; rod \"{}\" is not in the scene", r.name)
+            });
+        return Err(format!(
+            "the initial results hold {} rods, the scene {}{extra}: they are not a state of this \
+             scene",
+            rods.len(),
+            net.rods.len()
+        ));
     }
     // The scene, not the file, says where the supports are and how far they have moved: a result
     // of a version whose clamp was elsewhere would otherwise start (and "converge") with the
