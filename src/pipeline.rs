@@ -170,9 +170,24 @@ pub fn solve_scene_from(
     settings: &NewtonSettings,
     initial: &[crate::network::initial::RodState],
 ) -> Result<Solution, JobError> {
+    solve_scene_from_joints(scene, settings, initial, None)
+}
+
+/// [`solve_scene_from`] that also checks the results' joint names (`joints`), when given, against
+/// the scene's.
+pub fn solve_scene_from_joints(
+    scene: &Scene,
+    settings: &NewtonSettings,
+    initial: &[crate::network::initial::RodState],
+    joints: Option<&[String]>,
+) -> Result<Solution, JobError> {
     let mut network = build_within_limit(scene, settings.ordering).map_err(JobError::Scene)?;
     let rest = network.model.state.clone();
     crate::network::initial::place(&mut network, initial).map_err(JobError::Refused)?;
+    // After the rods: a file of another scene is named by its first rod that does not fit.
+    if let Some(names) = joints {
+        crate::network::initial::check_joints(&network, names).map_err(JobError::Refused)?;
+    }
     // A start that needs more than this is no restart: the solve from rest is then the better
     // path (a start that violates the scene's bounds, a load that changes the shape entirely).
     let budget = settings.max_iterations.min(RESTART_ITERATIONS);
@@ -183,7 +198,9 @@ pub fn solve_scene_from(
             .equilibrate_only(true)
             .max_iterations(budget),
     );
-    let report = if direct.converged {
+    // Out of time: the restart's own state is the answer (a solve from rest would start with
+    // no time left).
+    let report = if direct.converged || direct.stopped.is_some() {
         direct
     } else {
         network.model.state = rest;

@@ -158,7 +158,7 @@ impl Sweep {
     /// Indices of the points without finished results.
     fn pending(&self) -> Vec<usize> {
         (0..self.sweep.points.len())
-            .filter(|&i| run::finished(&self.sweep.point_file(i)).is_none())
+            .filter(|&i| self.sweep.finished_point(i).is_none())
             .collect()
     }
 

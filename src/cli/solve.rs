@@ -232,10 +232,13 @@ fn solve_and_write(label: &str, sc: &Scene, source: &Source, outputs: Outputs, q
         })
         .map_err(|e| source.describe(&e)),
         (Some(f), _) => match read_initial(f) {
-            Ok(rods) => job::solve_scene_from(sc, &settings, &rods).map_err(|e| match e {
-                job::JobError::Scene(e) => source.describe(&e),
-                job::JobError::Refused(m) => format!("--initial {}: {m}", f.display()),
-            }),
+            Ok(init) => {
+                job::solve_scene_from_joints(sc, &settings, &init.rods, init.joints.as_deref())
+                    .map_err(|e| match e {
+                        job::JobError::Scene(e) => source.describe(&e),
+                        job::JobError::Refused(m) => format!("--initial {}: {m}", f.display()),
+                    })
+            }
             Err(e) => Err(e),
         },
     };
@@ -386,7 +389,7 @@ fn write_files(files: &[(PathBuf, Vec<u8>)]) -> Result<(), String> {
 }
 
 /// The rods of an earlier results JSON (`--initial`).
-fn read_initial(f: &Path) -> Result<Vec<crate::network::initial::RodState>, String> {
+fn read_initial(f: &Path) -> Result<crate::io::initial::Initial, String> {
     let text = scene::read_text(f, "initial results", super::plot::MAX_JSON_BYTES)
         .map_err(|e| e.to_string())?;
     crate::io::initial::parse(&text).map_err(|e| format!("--initial {}: {e}", f.display()))

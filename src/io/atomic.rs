@@ -8,9 +8,11 @@
 //!   `O_TMPFILE` (or off Linux), a named temporary `.NAME.tmpPID` is used instead, and stale
 //!   ones of that pattern, whose process is gone, are removed before each write.
 //! - A symbolic link is written through (its target is truncated and written, the link stays),
-//!   and so are character and block devices, FIFOs and sockets (opened for writing, not
-//!   truncated): `--json /dev/null` must not replace /dev/null. Those writes are not atomic.
-//! - A directory, a symbolic link to one, and a dangling link are refused.
+//!   and so are character and block devices and pipes reached through `/dev/stdout` or
+//!   `/proc/self/fd` (opened for writing, not truncated): `--json /dev/null` must not replace
+//!   /dev/null. Those writes are not atomic.
+//! - A directory, a symbolic link to one, a dangling link, and a FIFO or socket with a name in
+//!   the file system are refused (a FIFO nobody reads would block the write forever).
 
 use std::fs::{File, OpenOptions};
 use std::io::{Error, ErrorKind, Write};
@@ -27,7 +29,7 @@ pub enum Target {
     Replace,
     /// A symbolic link to a regular file: written through, truncated first.
     LinkedFile,
-    /// A device, FIFO or socket (directly or through links): written through, not truncated.
+    /// A device, or a pipe without a name (`/dev/stdout`): written through, not truncated.
     Special,
 }
 
@@ -62,8 +64,41 @@ pub fn target(path: &Path) -> std::io::Result<Target> {
         ))
     } else if resolved.is_file() {
         Ok(Target::LinkedFile)
+    } else if let Some(what) = named_pipe(path, &resolved) {
+        Err(Error::new(
+            ErrorKind::InvalidInput,
+            format!(
+                "is {what}, not a regular file: writing to one with no reader waits forever; \
+                 give a file, or a pipe through /dev/stdout or `>(command)`"
+            ),
+        ))
     } else {
         Ok(Target::Special)
+    }
+}
+
+/// "a FIFO (a named pipe)" or "a socket" when `path` names one in the file system. A pipe
+/// reached through `/dev/stdout` or `/proc/self/fd/N` (a shell's `|`, `>(…)`) has no path of
+/// its own (its link reads `pipe:[N]`, which does not resolve): such a pipe is open at the
+/// other end while the command runs, so it is written through like a device.
+fn named_pipe(path: &Path, resolved: &std::fs::Metadata) -> Option<&'static str> {
+    #[cfg(unix)]
+    {
+        use std::os::unix::fs::FileTypeExt;
+        let t = resolved.file_type();
+        let what = if t.is_fifo() {
+            "a FIFO (a named pipe)"
+        } else if t.is_socket() {
+            "a socket"
+        } else {
+            return None;
+        };
+        path.canonicalize().is_ok().then_some(what)
+    }
+    #[cfg(not(unix))]
+    {
+        let _ = (path, resolved);
+        None
     }
 }
 

@@ -56,9 +56,10 @@ fn solve_here<P: NewtonProblem>(
     kept: Option<SparseCholesky>,
 ) -> (NewtonReport, SparseCholesky) {
     let t0 = Instant::now();
-    let deadline = s
-        .time_limit
-        .map(|t| t0 + Duration::from_secs_f64(t.clamp(0.0, 1e9)));
+    let deadline = s.deadline.or_else(|| {
+        s.time_limit
+            .map(|t| t0 + Duration::from_secs_f64(t.clamp(0.0, 1e9)))
+    });
     let n = p.num_free();
     let chol = match kept {
         Some(chol) => chol,

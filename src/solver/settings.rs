@@ -1,6 +1,7 @@
 //! Newton solver settings and the report it returns.
 
 use std::sync::Arc;
+use std::time::{Duration, Instant};
 
 use serde::Serialize;
 
@@ -24,6 +25,10 @@ pub struct NewtonSettings {
     pub ordering: super::Ordering,
     /// Seconds after which the solve stops with its last iterate (`stopped: "time limit"`).
     pub time_limit: Option<f64>,
+    /// When the time limit runs out: set once, when the limit is (`time_limit`), so that every
+    /// solve made with these settings or their clones (a restart and its solve from rest,
+    /// stages, extrapolation levels) shares one budget instead of each starting its own.
+    pub deadline: Option<Instant>,
     /// Solve at the end of the path (λ = 1) from the current state, without a path.
     pub equilibrate_only: bool,
     /// How the path from λ = 0 to 1 is followed.
@@ -61,6 +66,7 @@ impl Default for NewtonSettings {
             progress: None,
             ordering: super::Ordering::Auto,
             time_limit: None,
+            deadline: None,
             equilibrate_only: false,
             continuation: Continuation::Load,
             intermediate: false,
@@ -78,6 +84,7 @@ impl std::fmt::Debug for NewtonSettings {
             .field("progress", &self.progress.as_ref().map(|_| "closure"))
             .field("ordering", &self.ordering)
             .field("time_limit", &self.time_limit)
+            .field("deadline", &self.deadline)
             .field("equilibrate_only", &self.equilibrate_only)
             .field("continuation", &self.continuation)
             .field("intermediate", &self.intermediate)
@@ -107,8 +114,11 @@ impl NewtonSettings {
         self.ordering = o;
         self
     }
+    /// Sets the time limit, counted from now (see `deadline`).
     pub fn time_limit(mut self, seconds: Option<f64>) -> Self {
         self.time_limit = seconds;
+        self.deadline =
+            seconds.map(|t| Instant::now() + Duration::from_secs_f64(t.clamp(0.0, 1e9)));
         self
     }
     pub fn continuation(mut self, c: Continuation) -> Self {

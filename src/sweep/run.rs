@@ -158,12 +158,50 @@ pub fn finished(file: &Path) -> Option<Json> {
         .then_some(v)
 }
 
+/// FNV-1a, 64 bits: a hash that stays the same across Rust versions and platforms (the
+/// standard library's does not promise to), for fingerprints written into result files.
+fn fnv1a(bytes: &[u8]) -> u64 {
+    bytes.iter().fold(0xcbf2_9ce4_8422_2325, |h, &b| {
+        (h ^ u64::from(b)).wrapping_mul(0x0000_0100_0000_01b3)
+    })
+}
+
 impl Sweep {
-    /// Runs point `i` unless its results exist, and writes its file; `Err` only when the file
-    /// cannot be written.
+    /// The fingerprint of point `i`'s inputs: the base scene (as parsed, so that comments and
+    /// layout do not count) or the generator's fixed options, and every parameter's value. A
+    /// point file with another fingerprint was solved from other inputs and is solved again.
+    pub fn fingerprint(&self, i: usize) -> String {
+        let base = match &self.base {
+            super::Base::Scene { json, .. } => json!({ "scene": json }),
+            super::Base::Hemisphere(fixed) => json!({
+                "hemisphere": fixed.0.iter().map(|(k, v)| json!([k, v.to_json()]))
+                    .collect::<Vec<_>>(),
+            }),
+        };
+        let parameters: Vec<Json> = self.points[i]
+            .parameters
+            .iter()
+            .map(|(k, v)| json!([k, v.to_json()]))
+            .collect();
+        let all = json!({ "base": base, "parameters": parameters });
+        let text = serde_json::to_string(&all).expect("JSON serializes");
+        format!("{:016x}", fnv1a(text.as_bytes()))
+    }
+
+    /// Point `i`'s record when its file holds a finished point solved from the same inputs
+    /// (its fingerprint matches): what a resumed sweep keeps.
+    pub fn finished_point(&self, i: usize) -> Option<Json> {
+        let record = finished(&self.point_file(i))?;
+        let same = record.pointer("/sweep/fingerprint").and_then(Json::as_str)
+            == Some(self.fingerprint(i).as_str());
+        same.then_some(record)
+    }
+
+    /// Runs point `i` unless its results exist from the same inputs, and writes its file; `Err`
+    /// only when the file cannot be written.
     pub fn run_point(&self, i: usize) -> Result<Outcome, String> {
         let file = self.point_file(i);
-        if let Some(record) = finished(&file) {
+        if let Some(record) = self.finished_point(i) {
             return Ok(Outcome {
                 index: i,
                 skipped: true,
@@ -197,6 +235,7 @@ impl Sweep {
             "parameters": parameters,
             "seconds": seconds,
             "error": error,
+            "fingerprint": self.fingerprint(i),
         });
         std::fs::create_dir_all(&self.output)
             .map_err(|e| format!("cannot create {}: {e}", self.output.display()))?;

@@ -41,8 +41,32 @@ pub fn script(sweep: &Sweep, exe: &Path, dir: &Path) -> String {
     )
 }
 
+/// Refuses a path with a control character (a newline, a tab, an escape): the script names
+/// the paths in comments and `#SBATCH` lines, where no shell quoting applies, so a newline in
+/// one would start a line of its own, a command.
+fn plain(what: &str, p: &Path) -> Result<(), String> {
+    let text = p.to_string_lossy();
+    match text.chars().find(|c| c.is_control()) {
+        Some(c) => Err(format!(
+            "{what} {:?} holds the control character {:?}: a job script cannot name it safely; \
+             rename it",
+            text, c
+        )),
+        None => Ok(()),
+    }
+}
+
 /// Writes the script (executable) and the manifest into `dir` (created); returns the script.
+/// Paths with control characters are refused before anything is written.
 pub fn emit(sweep: &Sweep, exe: &Path, dir: &Path) -> Result<PathBuf, String> {
+    plain("the sweep file", Path::new(&sweep.file))?;
+    plain("the sweep's output folder", &sweep.output)?;
+    plain("the script folder", dir)?;
+    plain("the rodnet executable", exe)?;
+    for p in [Path::new(&sweep.file), dir, exe] {
+        let abs = std::path::absolute(p).unwrap_or_else(|_| p.to_path_buf());
+        plain("the absolute path", &abs)?;
+    }
     std::fs::create_dir_all(dir.join("logs"))
         .map_err(|e| format!("cannot create {}: {e}", dir.display()))?;
     let script_path = dir.join(SCRIPT);

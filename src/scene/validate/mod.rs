@@ -22,6 +22,10 @@ use super::FieldError;
 pub const MAX_NODES: usize = 2_000_000;
 /// Largest number of load steps.
 pub const MAX_LOAD_STEPS: usize = 100_000;
+/// Most Newton iterations per load step (`solver.max_iterations`): a hundred times the default
+/// and far past any solve that converges (Newton converges in tens of iterations or stalls), so
+/// that the count bounds the run (docs/scene-format.md); `time_limit` bounds its seconds.
+pub const MAX_ITERATIONS: usize = 100_000;
 /// Largest scene file read, bytes. A scene at the node limit written out point by point is
 /// about 100 MB; anything much larger is not a scene and is refused before it is read.
 pub const MAX_SCENE_BYTES: u64 = 256 * 1024 * 1024;
@@ -153,6 +157,16 @@ fn solver(sv: &Solver) -> Result<(), FieldError> {
             "solver",
             "max_iterations",
             "must be at least 1".into(),
+        ));
+    }
+    if sv.max_iterations > MAX_ITERATIONS {
+        return Err(FieldError::global(
+            "solver",
+            "max_iterations",
+            format!(
+                "must be at most {MAX_ITERATIONS} (the largest accepted value), got {}",
+                sv.max_iterations
+            ),
         ));
     }
     if sv.load_steps == 0 || sv.load_steps > MAX_LOAD_STEPS {
