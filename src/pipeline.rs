@@ -349,14 +349,19 @@ pub enum BuckleError {
 }
 
 /// The `k` lowest critical load factors of a validated scene and their modes, with the first
-/// checked along the load path unless `linear_only`.
-pub fn buckle(scene: &Scene, k: usize, linear_only: bool) -> Result<Buckling, BuckleError> {
+/// checked along the load path unless `linear_only`. A scene with `stages` is linearized about
+/// its equilibrium after the stages before `stage` (default: the last stage), and the factors
+/// scale that stage's added loads; `stage` "base" scales the scene's own loads about rest.
+pub fn buckle(
+    scene: &Scene,
+    k: usize,
+    linear_only: bool,
+    stage: Option<&str>,
+) -> Result<Buckling, BuckleError> {
     use crate::network::stability;
     let t0 = std::time::Instant::now();
-    // The factors multiply a staged scene's loads all together.
-    let scene = &scene.all_stages();
     let settings = settings_of(scene);
-    let mut net = build_within_limit(scene, settings.ordering).map_err(BuckleError::Scene)?;
+    let (mut net, about) = erected_for_buckling(scene, stage, &settings)?;
     if net.model.contact.is_some() {
         return Err(BuckleError::Analysis(
             "buckle does not handle contact or bounds yet (remove obstacles and bounds)".into(),
@@ -378,12 +383,57 @@ pub fn buckle(scene: &Scene, k: usize, linear_only: bool) -> Result<Buckling, Bu
     };
     let mut json = crate::io::stability::BucklingJson::new(&b, &rest, &shapes);
     json.path = path.as_ref().map(Into::into);
+    json.about_stage = about;
     json.seconds = t0.elapsed().as_secs_f64();
     Ok(Buckling {
         network: net,
         linear: b,
         json,
     })
+}
+
+/// The network `buckle` linearizes, at λ = 0 of the loads it scales, and the name of the stage
+/// whose equilibrium that is (None: the rest state of a scene without stages).
+fn erected_for_buckling(
+    scene: &Scene,
+    stage: Option<&str>,
+    settings: &NewtonSettings,
+) -> Result<(Network, Option<String>), BuckleError> {
+    let n = scene.stages.len();
+    let scaled = match stage {
+        None => n,
+        Some(name) => (0..=n)
+            .find(|&k| scene.stage_name(k) == name)
+            .ok_or_else(|| {
+                let names: Vec<&str> = (0..=n).map(|k| scene.stage_name(k)).collect();
+                BuckleError::Scene(FieldError::global(
+                    "stages",
+                    "",
+                    format!("--stage {name:?}: the scene has no such stage (it has {names:?})"),
+                ))
+            })?,
+    };
+    if scaled == 0 {
+        let base = scene.stage(0);
+        let net = build_within_limit(&base, settings.ordering).map_err(BuckleError::Scene)?;
+        return Ok((net, (n > 0).then(|| "rest".to_string())));
+    }
+    let mut before = scene.clone();
+    before.stages.truncate(scaled - 1);
+    let sol = solve_scene(&before, settings).map_err(BuckleError::Scene)?;
+    let about = scene.stage_name(scaled - 1).to_string();
+    if !sol.results.converged {
+        return Err(BuckleError::Analysis(format!(
+            "the equilibrium after stage {about:?} did not converge ({}): linear buckling \
+             needs it",
+            sol.report.message.clone().unwrap_or_default()
+        )));
+    }
+    let mut net =
+        build_within_limit(&scene.stage(scaled), settings.ordering).map_err(BuckleError::Scene)?;
+    crate::network::stage::start_from(&sol.network, &mut net)
+        .map_err(|m| BuckleError::Scene(FieldError::global("stages", "", m)))?;
+    Ok((net, Some(about)))
 }
 
 /// What `rodnet indent` measures: the results as its `--json` writes them, and the curve.

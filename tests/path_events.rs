@@ -84,3 +84,37 @@ fn stable_paths_have_no_events() {
         sol.results.path_events
     );
 }
+
+/// `buckle` on a staged column: a base stage preloading it to half Euler's load and a stage
+/// "more" adding Euler's load again. About the preloaded equilibrium, the stage's load is
+/// critical at the factor 0.5 (P₀ + μ·ΔP = P_cr); `--stage base` scales the preload about rest
+/// (factor 2). Before, every stage's loads were scaled together about rest (factor 2/3).
+#[test]
+fn buckle_linearizes_about_the_stage_before_the_scaled_one() {
+    let ei = 1e9 * 0.004 * 0.002f64.powi(3) / 12.0;
+    let p_cr = PI * PI * ei / 4.0;
+    let mut s = column(0.5 * p_cr, 64);
+    s.stages.push(Stage {
+        name: "more".into(),
+        loads: vec![Load::Force {
+            rod: "column".into(),
+            vertex: 1,
+            force: [0.0, 0.0, -p_cr],
+        }],
+    });
+    for (stage, about, factor) in [
+        (None, "base", 0.5),
+        (Some("more"), "base", 0.5),
+        (Some("base"), "rest", 2.0),
+    ] {
+        let b = rodnet::pipeline::buckle(&s, 2, true, stage).unwrap_or_else(|_| panic!());
+        let f = b.json.critical_load_factors[0];
+        println!(
+            "--stage {stage:?}: about {:?}, factor {f:.6}",
+            b.json.about_stage
+        );
+        assert_eq!(b.json.about_stage.as_deref(), Some(about));
+        assert!((f / factor - 1.0).abs() < 1e-3, "{f} vs {factor}");
+    }
+    assert!(rodnet::pipeline::buckle(&s, 2, true, Some("nope")).is_err());
+}

@@ -211,7 +211,7 @@ impl Scene {
         let scene = &self.scene;
         let out = py.detach(|| {
             std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-                rodnet::pipeline::buckle(scene, modes, linear_only).map(|b| b.json)
+                rodnet::pipeline::buckle(scene, modes, linear_only, None).map(|b| b.json)
             }))
         });
         match out {

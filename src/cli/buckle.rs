@@ -1,4 +1,5 @@
-//! `rodnet buckle SCENE.ron`: linear buckling factors and modes about the scene's rest state.
+//! `rodnet buckle SCENE.ron`: linear buckling factors and modes about the scene's rest state (a
+//! staged scene: about its equilibrium before the stage whose loads they scale).
 
 use std::path::{Path, PathBuf};
 
@@ -25,6 +26,10 @@ pub struct BuckleArgs {
     /// Only the linear factors: skip the check of the first one along the nonlinear load path.
     #[arg(long)]
     pub linear_only: bool,
+    /// A scene with stages: the stage whose loads the factors scale, about the equilibrium after
+    /// the stages before it (default: the last stage; "base": the scene's own loads, about rest).
+    #[arg(long, value_name = "NAME")]
+    pub stage: Option<String>,
     /// Print only the factors.
     #[arg(long)]
     pub quiet: bool,
@@ -42,11 +47,12 @@ pub fn run(a: &BuckleArgs) -> i32 {
         Err(e) => return bad(e),
     };
     let label = a.scene.display().to_string();
-    let buckling = match crate::pipeline::buckle(&sc, a.modes as usize, a.linear_only) {
-        Ok(b) => b,
-        Err(BuckleError::Scene(e)) => return bad(SceneError::from_field(&label, &src, &e)),
-        Err(BuckleError::Analysis(e)) => return bad(format_args!("{label}: {e}")),
-    };
+    let buckling =
+        match crate::pipeline::buckle(&sc, a.modes as usize, a.linear_only, a.stage.as_deref()) {
+            Ok(b) => b,
+            Err(BuckleError::Scene(e)) => return bad(SceneError::from_field(&label, &src, &e)),
+            Err(BuckleError::Analysis(e)) => return bad(format_args!("{label}: {e}")),
+        };
     let (net, b, json) = (&buckling.network, &buckling.linear, &buckling.json);
     if !b.converged {
         eprintln!(
@@ -76,6 +82,13 @@ pub fn run(a: &BuckleArgs) -> i32 {
     }
     if let Err((p, e)) = atomic::write_all(&files) {
         return bad(format_args!("cannot write {}: {e}", p.display()));
+    }
+    match json.about_stage.as_deref() {
+        Some("rest") => println!("{label}: about the rest state, scaling the scene's own loads"),
+        Some(about) => println!(
+            "{label}: about the equilibrium after stage {about:?}, scaling the next stage's loads"
+        ),
+        None => {}
     }
     if b.factors.is_empty() {
         println!("{label}: no positive critical load factor: the loads do not make it buckle");

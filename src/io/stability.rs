@@ -114,6 +114,9 @@ pub struct BucklingJson {
     pub path: Option<PathJson>,
     pub rounds: usize,
     pub seconds: f64,
+    /// A staged scene: the stage whose equilibrium the factors are about ("rest" when they
+    /// scale the scene's own loads); null without stages.
+    pub about_stage: Option<String>,
 }
 
 impl BucklingJson {
@@ -157,7 +160,8 @@ impl BucklingJson {
             })
             .collect();
         BucklingJson {
-            method: "linear: (K0 + lambda K1) u = 0 about the rest state, K1 the Hessian's \
+            method: "linear: (K0 + lambda K1) u = 0 about the start (the rest state, or a \
+                     staged scene's equilibrium before the scaled stage), K1 the Hessian's \
                      derivative along the linear response to the loads"
                 .into(),
             critical_load_factors: b.factors.clone(),
@@ -166,6 +170,7 @@ impl BucklingJson {
             path: None,
             rounds: b.rounds,
             seconds: b.seconds,
+            about_stage: None,
         }
     }
 }
