@@ -516,6 +516,7 @@ pub fn indent(
         limit_points: lims,
         curve_stability,
         bifurcations,
+        path_events: crate::io::indent::IndentJson::events_of(&curve),
         complete: curve.complete,
         message: curve.message.clone(),
         solve_iterations: sol.report.iterations,

@@ -370,6 +370,10 @@ fn indent_reports_where_the_pushed_arch_bifurcates() {
         .collect();
     let b = v["bifurcations"].as_array().unwrap();
     assert_eq!(b.len(), 1, "{b:?}");
+    // The S-shaped branch falls smoothly: a bifurcation, no snap.
+    let events = v["path_events"].as_array().unwrap();
+    assert_eq!(events.len(), 1, "{events:?}");
+    assert_eq!(events[0]["kind"], "bifurcation");
     let step = b[0]["step"].as_u64().unwrap() as usize;
     assert_eq!(left, vec![step]);
 

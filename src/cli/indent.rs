@@ -118,6 +118,15 @@ fn write(
 }
 
 fn summary(label: &str, o: &IndentJson) {
+    use crate::solver::path_events::EventKind::Snap;
+    for e in &o.path_events {
+        eprintln!(
+            "warning: {label}: the push passed a {} at {:.4e} m depth: {}",
+            e.kind.name(),
+            e.load_factor * o.depth,
+            e.detail
+        );
+    }
     let k = o.linear_stiffness.map_or_else(
         || "none (unstable state)".into(),
         |k| format!("{k:.6e} N/m"),
@@ -137,13 +146,21 @@ fn summary(label: &str, o: &IndentJson) {
         last[1],
         last[0],
         o.limit_points.len(),
-        match o.bifurcations.first() {
-            None => "no loss of stability".to_string(),
-            Some(b) => format!(
+        match (
+            o.bifurcations.first(),
+            o.path_events.iter().find(|e| e.kind == Snap)
+        ) {
+            (None, None) => "no loss of stability".to_string(),
+            (Some(b), _) => format!(
                 "{} loss(es) of stability, the first at depth {:.4e} m, force {:.6e} N",
                 o.bifurcations.len(),
                 b.depth,
                 b.force
+            ),
+            (None, Some(e)) => format!(
+                "snapped {} time(s) (path_events), the first at depth {:.4e} m",
+                o.path_events.iter().filter(|e| e.kind == Snap).count(),
+                e.load_factor * o.depth
             ),
         },
         o.iterations,

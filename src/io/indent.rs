@@ -37,6 +37,10 @@ pub struct IndentJson {
     /// control jumps across) (extension).
     #[serde(default)]
     pub bifurcations: Vec<BifurcationJson>,
+    /// The push's bifurcations and snaps (contract: kind "snap" where the force drops), with
+    /// `load_factor` the depth's share of the full push and `stage` null.
+    #[serde(default)]
+    pub path_events: Vec<crate::io::results::PathEventJson>,
     /// Every step reached equilibrium (else `message` says where the curve stops).
     pub complete: bool,
     #[serde(default, skip_serializing_if = "Option::is_none")]
@@ -71,6 +75,18 @@ pub struct BifurcationJson {
 }
 
 impl IndentJson {
+    pub fn events_of(c: &Curve) -> Vec<crate::io::results::PathEventJson> {
+        c.events
+            .iter()
+            .map(|e| crate::io::results::PathEventJson {
+                kind: e.kind,
+                load_factor: e.load_factor,
+                stage: None,
+                detail: e.detail.clone(),
+            })
+            .collect()
+    }
+
     pub fn curve_of(c: &Curve) -> (Vec<[f64; 2]>, Vec<[f64; 2]>) {
         (
             c.points.iter().map(|&(d, f)| [d, f]).collect(),

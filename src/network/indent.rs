@@ -11,6 +11,7 @@ use std::time::Instant;
 use crate::network::problem::NetworkProblem;
 use crate::network::Network;
 use crate::scene::types::{Scene, Support, SupportKind};
+use crate::solver::path_events::{EventKind, PathEvent};
 use crate::solver::spectrum;
 use crate::solver::{NewtonProblem, NewtonSettings, Ordering};
 
@@ -41,6 +42,9 @@ pub struct Curve {
     pub frictionless: bool,
     /// Local maxima of the force (depth, force): where a force-controlled push would snap.
     pub limit_points: Vec<(f64, f64)>,
+    /// Where the push passed a bifurcation or snapped, in order; `load_factor` is the depth's
+    /// share of the full push.
+    pub events: Vec<PathEvent>,
     /// Every step converged; if not, why the curve stops where it does.
     pub complete: bool,
     pub message: Option<String>,
@@ -157,6 +161,7 @@ pub fn push(
         lateral: 0.0,
         frictionless: axis.is_some(),
         limit_points: Vec::new(),
+        events: Vec::new(),
         complete: true,
         message: None,
         iterations: 0,
@@ -206,13 +211,69 @@ pub fn push(
                 .clone()
                 .map(|s| s.map_or(f64::NAN, |s| lowest_held(&mut p, s)));
             p.model.state = now;
-            curve.bifurcations.push(bifurcation(&curve, i, lowest));
+            let b = bifurcation(&curve, i, lowest);
+            curve.events.push(PathEvent {
+                kind: EventKind::Bifurcation,
+                load_factor: b.depth / how.depth,
+                detail: format!(
+                    "the pushed path lost stability at depth {:.6e} m, force {:.6e} N",
+                    b.depth, b.force
+                ),
+            });
+            curve.bifurcations.push(b);
+        } else if let Some(e) = snap_in_step(&curve.points, &r.path_events, (i, steps)) {
+            curve.events.push(e);
         }
         before = [before[1].take(), Some(p.model.state.clone())];
     }
     curve.limit_points = maxima(&curve.points);
     curve.seconds = t0.elapsed().as_secs_f64();
     Ok(curve)
+}
+
+/// A force drop under displacement control larger than both this many times the step before's
+/// change and `DROP_SHARE` of the largest force so far is a jump to another branch: along a
+/// smooth curve, neighbouring steps change the force alike (a maximum passed in one step
+/// included), however fine the steps.
+const DROP_RATIO: f64 = 4.0;
+const DROP_SHARE: f64 = 0.05;
+
+/// A snap in step `i` of `steps` (its point the last of `points`): the force drop rule, or a
+/// snap that the step's own solve saw (`path_events` of its sub-steps, in the step's fraction).
+fn snap_in_step(
+    points: &[(f64, f64)],
+    solve_events: &[PathEvent],
+    (i, steps): (usize, usize),
+) -> Option<PathEvent> {
+    let n = points.len();
+    let (d1, f1) = points[n - 1];
+    let (d0, f0) = points[n - 2];
+    let before = if n >= 3 {
+        (f0 - points[n - 3].1).abs()
+    } else {
+        0.0
+    };
+    let largest = points.iter().map(|p| p.1.abs()).fold(0.0, f64::max);
+    let drop = f0 - f1;
+    if drop > DROP_RATIO * before && drop > DROP_SHARE * largest {
+        return Some(PathEvent {
+            kind: EventKind::Snap,
+            load_factor: i as f64 / steps as f64,
+            detail: format!(
+                "the force dropped from {f0:.6e} N to {f1:.6e} N between depths {d0:.6e} and \
+                 {d1:.6e} m ({:.3e} N the step before): the structure jumped to another branch",
+                before
+            ),
+        });
+    }
+    solve_events
+        .iter()
+        .find(|e| e.kind == EventKind::Snap)
+        .map(|e| PathEvent {
+            kind: EventKind::Snap,
+            load_factor: ((i - 1) as f64 + e.load_factor) / steps as f64,
+            detail: format!("between depths {d0:.6e} and {d1:.6e} m: {}", e.detail),
+        })
 }
 
 /// The lowest eigenvalue (N/m) of the held network at `state`.
