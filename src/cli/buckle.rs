@@ -90,26 +90,39 @@ pub fn run(a: &BuckleArgs) -> i32 {
         ),
         None => {}
     }
+    let factors = b
+        .factors
+        .iter()
+        .map(|f| format!("{f:.6e}"))
+        .collect::<Vec<_>>()
+        .join(", ");
+    // A path that never loses stability makes the linear factors no buckling loads: they are
+    // not headlined as critical.
+    let headline = match path.as_ref().map(|p| p.kind.as_str()) {
+        Some("no_buckling") => "linear buckling factors (not reached: the path stays stable)",
+        Some("imperfect_bifurcation") => {
+            "linear buckling factors (not reached: the path turns smoothly)"
+        }
+        _ => "critical load factors",
+    };
     if b.factors.is_empty() {
         println!("{label}: no positive critical load factor: the loads do not make it buckle");
     } else {
         println!(
-            "{label}: critical load factors {} ({} subspace rounds, {:.3} s)",
-            b.factors
-                .iter()
-                .map(|f| format!("{f:.6e}"))
-                .collect::<Vec<_>>()
-                .join(", "),
-            b.rounds,
-            b.seconds
+            "{label}: {headline} {factors} ({} subspace rounds, {:.3} s)",
+            b.rounds, b.seconds
         );
     }
     if let Some(pc) = &path {
         match (pc.critical_load_factor, b.factors.first()) {
             (Some(f), Some(&lin)) => {
                 println!(
-                    "  along the load path: the lowest eigenvalue crosses zero at {f:.6e} \
-                     ({} equilibria, {} Newton iterations){}",
+                    "  along the load path: {} at {f:.6e} ({} equilibria, {} Newton iterations){}",
+                    if pc.kind == "bifurcation" {
+                        "the path's state turns unstable and leaves it (a bifurcation)"
+                    } else {
+                        "the lowest eigenvalue crosses zero"
+                    },
                     pc.samples.len() - 1,
                     pc.iterations,
                     if (f - lin).abs() > 0.01 * lin {

@@ -80,6 +80,13 @@ pub struct PathJson {
     /// Where the lowest eigenvalue of the tangent stiffness crosses zero along the load path
     /// (null: it does not, within the search; see `note`).
     pub critical_load_factor: Option<f64>,
+    /// What the path showed: "bifurcation" (the path's state turned unstable and left it: a
+    /// clean bifurcation, located), "crossing" (the lowest eigenvalue extrapolated to zero),
+    /// "imperfect_bifurcation" (a positive minimum: no critical factor), "no_buckling" (the
+    /// eigenvalue does not fall toward zero: the linear factors are no buckling loads of these
+    /// loads) or "unresolved" (see `note`).
+    #[serde(default)]
+    pub kind: String,
     /// [load factor, lowest eigenvalue (N/m)] at each equilibrium solved.
     pub samples: Vec<[f64; 2]>,
     pub iterations: usize,
@@ -91,6 +98,7 @@ impl From<&PathCritical> for PathJson {
     fn from(p: &PathCritical) -> Self {
         PathJson {
             critical_load_factor: p.factor,
+            kind: p.kind.name().into(),
             samples: p.samples.iter().map(|&(l, f)| [l, f]).collect(),
             iterations: p.iterations,
             note: p.note.clone(),

@@ -18,6 +18,7 @@ pub mod joint;
 pub mod mechanism;
 pub mod model;
 pub mod nonconservative;
+pub mod path_check;
 pub mod positions;
 pub mod problem;
 pub mod projection;

@@ -12,7 +12,7 @@ use crate::math::vec::{norm, sub};
 use crate::network::problem::NetworkProblem;
 use crate::network::Network;
 use crate::solver::spectrum::{self, Spectrum};
-use crate::solver::{NewtonSettings, Ordering};
+use crate::solver::Ordering;
 
 /// Rods of a displaced structure: (rod name, points, closed).
 pub type Shape = Vec<(String, Vec<[f64; 3]>, bool)>;
@@ -112,121 +112,7 @@ pub fn buckling(net: &mut Network, k: usize) -> Result<LinearBuckling, String> {
     })
 }
 
-/// Where the lowest eigenvalue of the tangent stiffness crosses zero along the nonlinear load
-/// path (the check of a linear factor, or the critical factor where the structure deforms
-/// before it buckles).
-#[derive(Debug, Clone)]
-pub struct PathCritical {
-    /// The crossing, or None when the lowest eigenvalue does not fall toward zero.
-    pub factor: Option<f64>,
-    /// (load factor, lowest eigenvalue in N/m) at each equilibrium solved on the way.
-    pub samples: Vec<(f64, f64)>,
-    /// Newton iterations of those solves.
-    pub iterations: usize,
-    /// Why the search stopped without a crossing (a failed solve, no approach to zero).
-    pub note: Option<String>,
-}
-
-/// Follows the load path from the rest state toward `guess` (the linear factor), solving the
-/// equilibrium at load factors below the crossing and extrapolating the lowest eigenvalue to
-/// zero by secants, from below: past the crossing a symmetric structure leaves its path (the
-/// solver escapes the saddle) and its eigenvalue rises again. A rise after a fall is taken as
-/// such an overshoot: the solve is redone from the last sample with half the increment.
-pub fn critical_on_path(net: &mut Network, settings: &NewtonSettings, guess: f64) -> PathCritical {
-    let ebar = mean_edge(&net.model);
-    let mut p = NetworkProblem::of_network(net);
-    let mut out = PathCritical {
-        factor: None,
-        samples: Vec::new(),
-        iterations: 0,
-        note: None,
-    };
-    match search(&mut p, settings, guess, ebar, &mut out) {
-        Ok(f) => out.factor = f,
-        Err(e) => out.note = Some(e),
-    }
-    out
-}
-
-/// The lowest eigenvalue (N/m) of the problem's Hessian at its current state.
-fn lowest(p: &mut NetworkProblem, ebar: f64) -> Result<f64, String> {
-    let sp = spectrum::lowest_modes(p, 2, Ordering::Auto)?;
-    Ok(sp.values.first().copied().unwrap_or(f64::INFINITY) / (ebar * ebar))
-}
-
-fn search(
-    p: &mut NetworkProblem,
-    settings: &NewtonSettings,
-    guess: f64,
-    ebar: f64,
-    out: &mut PathCritical,
-) -> Result<Option<f64>, String> {
-    use crate::solver::NewtonProblem;
-    p.set_continuation(0.0);
-    let mut at = (0.0, lowest(p, ebar)?, p.snapshot());
-    out.samples.push((at.0, at.1));
-    let mut falling = false;
-    let mut next = 0.5 * guess;
-    let mut last_root = f64::NAN;
-    let horizon = (2.0 * guess).max(1.0);
-    for _ in 0..PATH_SOLVES {
-        let (lam, f0) = (at.0, at.1);
-        p.set_load_range(lam, next);
-        let r = p.solve(settings);
-        out.iterations += r.iterations;
-        if !r.converged {
-            return Err(format!(
-                "the path solve from load factor {lam:.6e} to {next:.6e} did not converge: {}",
-                r.message.unwrap_or_default()
-            ));
-        }
-        let f = lowest(p, ebar)?;
-        if f <= 0.0 {
-            out.samples.push((next, f));
-            return Ok(Some(lam + (next - lam) * f0 / (f0 - f)));
-        }
-        if falling && f > f0 {
-            if next - lam > 1e-4 * lam {
-                // Left the path past the crossing: back to the last sample, half the increment.
-                p.restore(&at.2);
-                next = lam + 0.5 * (next - lam);
-                continue;
-            }
-            // Rising even over the smallest increment: the eigenvalue has a positive minimum.
-            return Err(format!(
-                "the lowest eigenvalue falls to {f0:.3e} N/m at load factor {lam:.6e} and rises \
-                 again without crossing zero (an imperfect bifurcation: the path turns smoothly)"
-            ));
-        }
-        out.samples.push((next, f));
-        falling = f < f0;
-        let root = next - f * (next - lam) / (f - f0);
-        at = (next, f, p.snapshot());
-        if !(falling && root.is_finite() && root > next) {
-            if next >= horizon {
-                return Err(format!(
-                    "the lowest eigenvalue does not fall toward zero along the path (checked up \
-                     to load factor {next:.6e}): no buckling there"
-                ));
-            }
-            next = (2.0 * next).min(horizon);
-            last_root = f64::NAN;
-            continue;
-        }
-        if (root - last_root).abs() <= 1e-6 * root {
-            return Ok(Some(root));
-        }
-        last_root = root;
-        // A far extrapolation from a nearly flat eigenvalue is not trusted: at most ×4 per solve.
-        next = (at.0 + APPROACH * (root - at.0)).min(4.0 * at.0);
-    }
-    Err(format!("no crossing within {PATH_SOLVES} path solves"))
-}
-
-/// Path solves of `critical_on_path` before it gives up.
-const PATH_SOLVES: usize = 30;
-/// Fraction of the way to the extrapolated crossing that each path solve goes.
-const APPROACH: f64 = 0.9;
+pub use super::path_check::{critical_on_path, PathCritical, PathKind};
 
 /// Each rod's points displaced along `mode` so that the largest node motion is `fraction` of
 /// the structure's bounding-box diagonal, the largest motion pointing along +x, +y or +z.
@@ -319,7 +205,7 @@ pub fn zero_stiffness(m: &crate::network::Model, rods: &[crate::network::info::R
 }
 
 /// The mean rest edge length: the unit that turns edge angles into lengths (1 m without edges).
-fn mean_edge(m: &crate::network::Model) -> f64 {
+pub(super) fn mean_edge(m: &crate::network::Model) -> f64 {
     match m.mean_edge() {
         l if l > 0.0 => l,
         _ => 1.0,
