@@ -88,12 +88,16 @@ pub fn settings_of(scene: &Scene) -> NewtonSettings {
         .tolerance(scene.solver.tolerance.unwrap_or(DEFAULT_TOLERANCE))
         .automatic_tolerance(scene.solver.tolerance.is_none())
         .time_limit(time_limit().or(scene.solver.time_limit))
-        .continuation(match scene.solver.continuation {
-            crate::scene::types::Continuation::Load => crate::solver::Continuation::Load,
-            crate::scene::types::Continuation::ArcLength => crate::solver::Continuation::ArcLength,
-        })
+        .continuation(continuation(scene.solver.continuation))
         .max_iterations(scene.solver.max_iterations)
         .load_steps(scene.solver.load_steps)
+}
+
+fn continuation(c: crate::scene::types::Continuation) -> crate::solver::Continuation {
+    match c {
+        crate::scene::types::Continuation::Load => crate::solver::Continuation::Load,
+        crate::scene::types::Continuation::ArcLength => crate::solver::Continuation::ArcLength,
+    }
 }
 
 /// Builds a validated scene and solves it with Newton's method and load stepping, stage by
@@ -129,7 +133,12 @@ pub fn solve_stages(
             let mut network = build_within_limit(&sc, settings.ordering)?;
             crate::network::stage::start_from(&sol.network, &mut network)
                 .map_err(|m| FieldError::global("stages", "", m))?;
-            let report = crate::network::solve(&mut network.model, settings);
+            let own = scene.stages[k - 1].continuation.map(continuation);
+            let stage_settings = match own {
+                Some(c) => settings.clone().continuation(c),
+                None => settings.clone(),
+            };
+            let report = crate::network::solve(&mut network.model, &stage_settings);
             sol = finish(network, &sc, report, |_, _| {});
         }
         // Each stage's results carry the events of the path so far, named by stage.

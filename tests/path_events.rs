@@ -101,6 +101,7 @@ fn buckle_linearizes_about_the_stage_before_the_scaled_one() {
             vertex: 1,
             force: [0.0, 0.0, -p_cr],
         }],
+        continuation: None,
     });
     for (stage, about, factor) in [
         (None, "base", 0.5),
@@ -117,4 +118,42 @@ fn buckle_linearizes_about_the_stage_before_the_scaled_one() {
         assert!((f / factor - 1.0).abs() < 1e-3, "{f} vs {factor}");
     }
     assert!(rodnet::pipeline::buckle(&s, 2, true, Some("nope")).is_err());
+}
+
+/// A stage may follow its own path under arc length while the rest of the scene stays under
+/// load control (`Stage(continuation: Some(ArcLength))`), and a scene-wide arc length may be
+/// turned back to load control for one stage. The stage's results say which ran.
+#[test]
+fn a_stage_follows_its_own_continuation() {
+    let ei = 1e9 * 0.004 * 0.002f64.powi(3) / 12.0;
+    let p_cr = PI * PI * ei / 4.0;
+    let staged = |own: Option<Continuation>, scene_wide: Continuation| {
+        let mut s = column(0.5 * p_cr, 32);
+        s.solver.continuation = scene_wide;
+        s.stages.push(Stage {
+            name: "more".into(),
+            loads: vec![Load::Force {
+                rod: "column".into(),
+                vertex: 1,
+                force: [0.0, 0.0, -0.3 * p_cr],
+            }],
+            continuation: own,
+        });
+        let sol = solve_scene(&s, &settings_of(&s)).unwrap();
+        assert!(sol.results.converged, "{:?}", sol.results.solver.message);
+        sol.results.continuation.map(|c| c.kind)
+    };
+    assert_eq!(
+        staged(Some(Continuation::ArcLength), Continuation::Load).as_deref(),
+        Some("arc_length")
+    );
+    assert_eq!(staged(None, Continuation::Load), None);
+    assert_eq!(
+        staged(Some(Continuation::Load), Continuation::ArcLength),
+        None
+    );
+    assert_eq!(
+        staged(None, Continuation::ArcLength).as_deref(),
+        Some("arc_length")
+    );
 }

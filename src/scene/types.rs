@@ -46,6 +46,10 @@ pub struct Stage {
     pub name: String,
     #[serde(default)]
     pub loads: Vec<Load>,
+    /// How this stage's path is followed (default: the scene's `solver.continuation`): e.g. an
+    /// erection under load control, then a load stage under arc length through its limit point.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub continuation: Option<Continuation>,
 }
 
 impl Scene {
