@@ -11,38 +11,12 @@ use rodnet::pipeline::{settings_of, solve_scene};
 use rodnet::scene::types::*;
 use rodnet::solver::path_events::EventKind;
 
-/// A column of length 1 m, 4 × 2 mm, E = 1 GPa, clamped at its foot, `n` edges, under the dead
-/// axial load `p` (N) at its top.
-fn column(p: f64, n: usize) -> Scene {
-    let mat = Material {
-        young_modulus: 1e9,
-        poisson_ratio: Some(0.3),
-        shear_modulus: None,
-        density: 0.0,
-        section: Section::Rectangle {
-            width: 0.004,
-            height: 0.002,
-        },
-        yield_strength: None,
-    };
-    let mut r = rod("column", vec![[0.0; 3], [0.0, 0.0, 1.0]], n);
-    r.normal = Some([1.0, 0.0, 0.0]);
-    let mut s = scene(mat, vec![r]);
-    s.supports.push(support("column", 0, SupportKind::Clamp));
-    s.loads.push(Load::Force {
-        rod: "column".into(),
-        vertex: 1,
-        force: [0.0, 0.0, -p],
-    });
-    s
-}
-
 /// Euler's load π²EI/4L² of the weak axis is reached at the load factor P_cr/P: the event is
 /// there within the discretization's error (measured: −2.0e-4 at 32 edges, −5e-5 at 64), once,
 /// and the column ends buckled and stable.
 #[test]
 fn euler_column_bifurcates_at_the_critical_load_factor() {
-    let ei = 1e9 * 0.004 * 0.002f64.powi(3) / 12.0;
+    let ei = COLUMN_EI;
     let p_cr = PI * PI * ei / 4.0;
     for (factor, n) in [(1.52, 32), (3.0, 32), (1.52, 64)] {
         let s = column(factor * p_cr, n);
@@ -67,7 +41,7 @@ fn euler_column_bifurcates_at_the_critical_load_factor() {
 /// cantilever), no event.
 #[test]
 fn stable_paths_have_no_events() {
-    let ei = 1e9 * 0.004 * 0.002f64.powi(3) / 12.0;
+    let ei = COLUMN_EI;
     let s = column(0.9 * PI * PI * ei / 4.0, 32);
     let sol = solve_scene(&s, &settings_of(&s)).unwrap();
     assert!(sol.results.path_events.is_empty());
@@ -91,7 +65,7 @@ fn stable_paths_have_no_events() {
 /// (factor 2). Before, every stage's loads were scaled together about rest (factor 2/3).
 #[test]
 fn buckle_linearizes_about_the_stage_before_the_scaled_one() {
-    let ei = 1e9 * 0.004 * 0.002f64.powi(3) / 12.0;
+    let ei = COLUMN_EI;
     let p_cr = PI * PI * ei / 4.0;
     let mut s = column(0.5 * p_cr, 64);
     s.stages.push(Stage {
@@ -125,7 +99,7 @@ fn buckle_linearizes_about_the_stage_before_the_scaled_one() {
 /// turned back to load control for one stage. The stage's results say which ran.
 #[test]
 fn a_stage_follows_its_own_continuation() {
-    let ei = 1e9 * 0.004 * 0.002f64.powi(3) / 12.0;
+    let ei = COLUMN_EI;
     let p_cr = PI * PI * ei / 4.0;
     let staged = |own: Option<Continuation>, scene_wide: Continuation| {
         let mut s = column(0.5 * p_cr, 32);

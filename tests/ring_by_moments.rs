@@ -138,29 +138,9 @@ fn ring_by_dead_moments_on_the_exact_arc() {
 /// column without it (the skew stiffness barely couples the buckling mode: the escape runs).
 #[test]
 fn a_small_dead_torque_does_not_hold_a_column_straight() {
-    let ei_weak = 1e9 * 0.004 * 0.002f64.powi(3) / 12.0;
-    let p = 1.5 * PI * PI * ei_weak / 4.0;
+    let p = 1.5 * PI * PI * COLUMN_EI / 4.0;
     let column = |torque: f64| {
-        let mat = Material {
-            young_modulus: 1e9,
-            poisson_ratio: Some(0.3),
-            shear_modulus: None,
-            density: 0.0,
-            section: Section::Rectangle {
-                width: 0.004,
-                height: 0.002,
-            },
-            yield_strength: None,
-        };
-        let mut r = rod("column", vec![[0.0; 3], [0.0, 0.0, 1.0]], 32);
-        r.normal = Some([1.0, 0.0, 0.0]);
-        let mut s = scene(mat, vec![r]);
-        s.supports.push(support("column", 0, SupportKind::Clamp));
-        s.loads.push(Load::Force {
-            rod: "column".into(),
-            vertex: 1,
-            force: [0.0, 0.0, -p],
-        });
+        let mut s = column(p, 32);
         if torque != 0.0 {
             s.loads.push(Load::Torque {
                 rod: "column".into(),

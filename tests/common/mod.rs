@@ -95,3 +95,32 @@ pub fn cantilever(n: usize, p: f64) -> Scene {
     });
     s
 }
+
+/// Weak-axis bending stiffness of `column`'s 4 × 2 mm section, E = 1 GPa (N·m²).
+pub const COLUMN_EI: f64 = 1e9 * 0.004 * 0.002 * 0.002 * 0.002 / 12.0;
+
+/// A column of length 1 m along z, 4 × 2 mm, E = 1 GPa, ν = 0.3, clamped at its foot, `n`
+/// edges, under the dead axial load `p` (N) at its top; Euler's load π²·COLUMN_EI/4.
+pub fn column(p: f64, n: usize) -> Scene {
+    let mat = Material {
+        young_modulus: 1e9,
+        poisson_ratio: Some(0.3),
+        shear_modulus: None,
+        density: 0.0,
+        section: Section::Rectangle {
+            width: 0.004,
+            height: 0.002,
+        },
+        yield_strength: None,
+    };
+    let mut r = rod("column", vec![[0.0; 3], [0.0, 0.0, 1.0]], n);
+    r.normal = Some([1.0, 0.0, 0.0]);
+    let mut s = scene(mat, vec![r]);
+    s.supports.push(support("column", 0, SupportKind::Clamp));
+    s.loads.push(Load::Force {
+        rod: "column".into(),
+        vertex: 1,
+        force: [0.0, 0.0, -p],
+    });
+    s
+}
