@@ -465,6 +465,23 @@ fn load_control_past_the_limit_reports_the_bifurcation_and_the_snap() {
         let crown = r.rods[0].points[32][2];
         assert!(crown < -0.01, "crown {crown}");
     }
+    // The crown stage under arc length: the same bifurcation, found between two arc-length
+    // steps by the Hessian turning indefinite and located by bisecting the arc (4.1789e-2 N as
+    // under load control); the final iteration at λ = 1 leaves the S-shaped saddle for the
+    // inverted state.
+    let mut scene = loaded_arch(0.06, true);
+    scene.stages[0].continuation = Some(rodnet::scene::types::Continuation::ArcLength);
+    let sol = rodnet::pipeline::solve_scene(&scene, &settings_of(&scene)).unwrap();
+    let ev = &sol.results.path_events;
+    assert!(sol.results.converged && sol.results.rods[0].points[32][2] < -0.01);
+    let first = ev
+        .iter()
+        .find(|e| e.kind == rodnet::solver::path_events::EventKind::Bifurcation)
+        .unwrap_or_else(|| panic!("{ev:?}"));
+    assert!(
+        ((first.load_factor * 0.06) / force - 1.0).abs() < 5e-3,
+        "{ev:?}"
+    );
     let scene = loaded_arch(0.03, false);
     let sol = rodnet::pipeline::solve_scene(&scene, &settings_of(&scene)).unwrap();
     assert!(

@@ -18,8 +18,19 @@ use rodnet::solver::path_events::EventKind;
 fn euler_column_bifurcates_at_the_critical_load_factor() {
     let ei = COLUMN_EI;
     let p_cr = PI * PI * ei / 4.0;
-    for (factor, n) in [(1.52, 32), (3.0, 32), (1.52, 64)] {
-        let s = column(factor * p_cr, n);
+    for (factor, n, arc) in [
+        (1.52, 32, false),
+        (3.0, 32, false),
+        (1.52, 64, false),
+        (1.52, 32, true),
+    ] {
+        let mut s = column(factor * p_cr, n);
+        if arc {
+            // Arc length passes the bifurcation on the straight branch, sees the Hessian turn
+            // indefinite between two steps and bisects the arc for it; the final Newton
+            // iteration at λ = 1 then escapes to the buckled state.
+            s.solver.continuation = Continuation::ArcLength;
+        }
         let sol = solve_scene(&s, &settings_of(&s)).unwrap();
         let r = &sol.results;
         assert!(r.converged && r.solver.stable, "{:?}", r.solver.message);

@@ -15,6 +15,7 @@ use std::time::Instant;
 
 use super::modes::wdot;
 use super::newton::{Limits, Newton, Outcome};
+use super::path_events::{EventKind, PathEvent};
 use super::problem::NewtonProblem;
 use super::settings::{LimitPoint, NewtonSettings};
 
@@ -50,6 +51,7 @@ pub(super) fn follow<P: NewtonProblem>(
     // The last step: where it started (λ, state) and its length.
     let mut last_step: Option<(f64, P::Snapshot, f64)> = None;
     let budget = s.max_iterations.saturating_mul(s.load_steps.max(1));
+    let mut was_stable = true;
     for step in 0..MAX_STEPS {
         if st.report.iterations >= budget {
             return Outcome::Budget(format!(
@@ -72,6 +74,38 @@ pub(super) fn follow<P: NewtonProblem>(
             kappa = if tx > 0.0 { 1.0 / tx } else { 1.0 };
         }
         normalize(&mut t, kappa, &st.weights, prev_t.as_ref());
+        // H is assembled here: whether it is positive definite tells a stable point of the
+        // path (one Cholesky attempt per step).
+        st.report.factorizations += 1;
+        let stable_here = st.chol.factor(0.0).is_ok();
+        let limit = matches!(&prev_t, Some(pt) if pt.lam * t.lam < 0.0);
+        if let (Some(pt), Some((l0, s0, len)), true, false) =
+            (&prev_t, &last_step, was_stable && !stable_here, limit)
+        {
+            // Stability lost without the load factor turning back: a bifurcation, which the
+            // path passes on its unstable branch. Located like a limit point, then back here.
+            let after = p.snapshot();
+            let at = locate(st, p, (s, kappa), (*l0, s0, pt), *len, |st, _, _| {
+                st.report.factorizations += 1;
+                st.chol.factor(0.0).is_err()
+            });
+            st.report.path_events.push(PathEvent {
+                kind: EventKind::Bifurcation,
+                load_factor: at,
+                detail: format!(
+                    "between load factors {l0:.6} and {lam:.6} the arc-length path's state turned \
+                     unstable without a limit point (last stable point located at {at:.6}): a \
+                     bifurcation, passed on the path's unstable branch"
+                ),
+            });
+            p.restore(&after);
+            p.set_continuation(lam);
+            t = tangent(st, p, lam, n).map_or(t, |mut nt| {
+                normalize(&mut nt, kappa, &st.weights, prev_t.as_ref());
+                nt
+            });
+        }
+        was_stable = stable_here;
         if let (Some(pt), Some((l0, s0, len))) = (&prev_t, &last_step) {
             if pt.lam * t.lam < 0.0 {
                 // A limit point between the last two points: locate it, then come back here.
@@ -144,8 +178,24 @@ fn locate_limit<P: NewtonProblem>(
     p: &mut P,
     s: &NewtonSettings,
     kappa: f64,
+    start: (f64, &P::Snapshot, &Tangent),
+    len: f64,
+) -> f64 {
+    locate(st, p, (s, kappa), start, len, |_, t_m, t_a| {
+        t_m.lam * t_a.lam <= 0.0
+    })
+}
+
+/// Bisects the arc from (λ₀, state, tangent t₀) over `len` for the first point where
+/// `crossed(st, tangent there, tangent before)` holds (the Hessian there is assembled), and
+/// returns λ at the last point before it.
+fn locate<P: NewtonProblem>(
+    st: &mut Newton,
+    p: &mut P,
+    (s, kappa): (&NewtonSettings, f64),
     (lam0, state0, t0): (f64, &P::Snapshot, &Tangent),
     len: f64,
+    crossed: impl Fn(&mut Newton, &Tangent, &Tangent) -> bool,
 ) -> f64 {
     let n = st.g.len();
     let (mut lam_a, mut state_a) = (lam0, state0.clone());
@@ -169,7 +219,7 @@ fn locate_limit<P: NewtonProblem>(
             break;
         };
         normalize(&mut t_m, kappa, &st.weights, Some(&t_a));
-        if t_m.lam * t_a.lam > 0.0 {
+        if !crossed(st, &t_m, &t_a) {
             // Still before the limit: move the start there.
             lam_a = lam_m;
             state_a = p.snapshot();
