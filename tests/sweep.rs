@@ -233,7 +233,12 @@ fn slurm_array_tasks_run_here_and_merge_into_the_local_table() {
             .unwrap()
     };
     let o = merge();
-    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+    assert_eq!(
+        o.status.code(),
+        Some(1),
+        "missing points must fail: {}",
+        text(&o)
+    );
     assert!(
         text(&o).contains("2 point(s) missing (no results file yet): 1 2"),
         "{}",
@@ -242,6 +247,7 @@ fn slurm_array_tasks_run_here_and_merge_into_the_local_table() {
     task(1);
     task(2);
     let o = merge();
+    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
     assert!(!text(&o).contains("missing"), "{}", text(&o));
     let from_array = table(&d.join("out/sweep.csv"));
 

@@ -29,6 +29,21 @@ def run_point(source, index):
     }
 
 
+def _sweep_text(d):
+    """A dict sweep as JSON text; a NaN or a value of another type raises `SceneError` naming
+    its place (`grid.rods[1]`), not a parse error at a column of the generated text."""
+    try:
+        return json.dumps(d, default=_convert.plain, allow_nan=False)
+    except (TypeError, ValueError):
+        found = _convert.locate(d)
+        if found is None:
+            raise
+    field, message = found
+    e = _rodnet.SceneError(f"{field}: {message}")
+    e.path, e.line, e.column, e.field, e.message = None, None, None, field, message
+    raise e
+
+
 class SweepTable:
     """The merged table of a sweep: `rows` (dicts: point, parameters, converged, iterations,
     seconds, quantities, message), `csv` (the sweep.csv path), `missing` (points without
@@ -86,7 +101,7 @@ def sweep(spec, *, executor=None, jobs=None, output=None):
             d["scene_ron"] = d.pop("scene").to_ron()
         if output is not None:
             d["output"] = os.fspath(output)
-        text = json.dumps(d, default=_convert.plain)
+        text = _sweep_text(d)
         plan = _rodnet.Sweep.parse(text, "<sweep>", os.getcwd(), None)
     else:
         raise TypeError("spec must be a sweep file path or a dict")

@@ -7,13 +7,18 @@ use pyo3::exceptions::{PyIndexError, PyKeyError, PyOSError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyBytes;
 
-use rodnet::io::results::RodJson;
+use rodnet::io::results::{Results as ResultsJson, RodJson};
 use rodnet::sweep::run::Solved;
 
 /// The results of a solve: the content of the results JSON (`to_dict()`), with shortcuts.
+/// Pickled as that JSON text (read back bit for bit), so that process pools and Dask can pass
+/// results between processes.
 #[pyclass(module = "rodnet", frozen)]
 pub struct Results {
     solved: Solved,
+    /// The `gridshell` block as JSON: the block's own type only serializes, and an unpickled
+    /// Results has nothing else to build it from.
+    gridshell: Option<serde_json::Value>,
 }
 
 /// A results block as a dict, or None where the results have none.
@@ -28,7 +33,24 @@ fn optional_block<'py, T: serde::Serialize>(
 
 impl Results {
     pub fn new(solved: Solved) -> Results {
-        Results { solved }
+        let gridshell = solved
+            .gridshell
+            .as_ref()
+            .map(|g| serde_json::to_value(g).expect("the gridshell block serializes"));
+        let solved = Solved {
+            results: solved.results,
+            gridshell: None,
+        };
+        Results { solved, gridshell }
+    }
+
+    /// The results JSON (`Solved::to_json` with the block kept here).
+    fn json(&self) -> serde_json::Value {
+        let mut v = self.solved.to_json();
+        if let (Some(g), serde_json::Value::Object(m)) = (&self.gridshell, &mut v) {
+            m.insert("gridshell".into(), g.clone());
+        }
+        v
     }
 
     fn rod(&self, rod: &Bound<'_, PyAny>) -> PyResult<&RodJson> {
@@ -135,7 +157,7 @@ impl Results {
     /// The generated gridshell's block (options, sizes, shape metrics), or None.
     #[getter]
     fn gridshell<'py>(&self, py: Python<'py>) -> PyResult<Option<Bound<'py, PyAny>>> {
-        optional_block(py, self.solved.gridshell.as_ref())
+        optional_block(py, self.gridshell.as_ref())
     }
 
     /// Node positions of a rod (by name or index), m: an (n, 3) array.
@@ -153,12 +175,12 @@ impl Results {
 
     /// The results JSON as Python data.
     fn to_dict<'py>(&self, py: Python<'py>) -> PyResult<Bound<'py, PyAny>> {
-        crate::to_python(py, &self.solved.to_json())
+        crate::to_python(py, &self.json())
     }
 
     /// The results JSON text.
     fn to_json(&self) -> String {
-        serde_json::to_string_pretty(&self.solved.to_json()).expect("serializes")
+        serde_json::to_string_pretty(&self.json()).expect("serializes")
     }
 
     /// Writes the results JSON (as `rodnet solve --json`), atomically.
@@ -185,6 +207,28 @@ impl Results {
             ));
         }
         write(&path, rodnet::io::vtk::to_vtk(r, format).as_bytes())
+    }
+
+    /// Results from the text `to_json()` wrote (what unpickling calls).
+    #[staticmethod]
+    fn _from_json(text: &str) -> PyResult<Results> {
+        let mut v: serde_json::Value =
+            serde_json::from_str(text).map_err(|e| PyValueError::new_err(e.to_string()))?;
+        let gridshell = v.as_object_mut().and_then(|m| m.remove("gridshell"));
+        let results: ResultsJson =
+            serde_json::from_value(v).map_err(|e| PyValueError::new_err(e.to_string()))?;
+        Ok(Results {
+            solved: Solved {
+                results,
+                gridshell: None,
+            },
+            gridshell,
+        })
+    }
+
+    fn __reduce__<'py>(slf: &Bound<'py, Self>) -> PyResult<(Bound<'py, PyAny>, (String,))> {
+        let ctor = slf.get_type().getattr("_from_json")?;
+        Ok((ctor, (slf.get().to_json(),)))
     }
 
     fn __repr__(&self) -> String {

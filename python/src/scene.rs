@@ -15,6 +15,9 @@ use rodnet::sweep::{path, Job};
 use crate::results::Results;
 use crate::{located, scene_error, solve_released, SolveError};
 
+/// What a pickled scene holds: its text and file (`Scene::__reduce__`).
+type SceneState = (String, Option<String>);
+
 /// A validated scene (the RON scene format of docs/scene-format.md).
 ///
 /// Build one with `rodnet.load_scene(path)`, `Scene.from_ron(text)`, `Scene.from_dict(data)`
@@ -105,7 +108,7 @@ impl Scene {
     #[pyo3(signature = (**data))]
     fn new(py: Python<'_>, data: Option<&Bound<'_, PyDict>>) -> PyResult<Scene> {
         match data {
-            Some(d) => Scene::from_json(py, crate::from_python(d.as_any())?),
+            Some(d) => Scene::from_json(py, crate::from_python(d.as_any(), "")?),
             None => Scene::from_json(py, serde_json::json!({})),
         }
     }
@@ -120,7 +123,7 @@ impl Scene {
     /// A scene from Python data shaped as the RON text (dicts, lists, numbers, strings).
     #[staticmethod]
     fn from_dict(py: Python<'_>, data: &Bound<'_, PyAny>) -> PyResult<Scene> {
-        Scene::from_json(py, crate::from_python(data)?)
+        Scene::from_json(py, crate::from_python(data, "")?)
     }
 
     /// The scene as RON text (what `load_scene` reads back).
@@ -144,7 +147,7 @@ impl Scene {
     /// (paths as in sweeps, docs/sweep.md); the copy is validated.
     fn set(&self, py: Python<'_>, path: &str, value: &Bound<'_, PyAny>) -> PyResult<Scene> {
         let mut v = self.json();
-        let new = crate::from_python(value)?;
+        let new = crate::from_python(value, path)?;
         path::set(&mut v, path, new).map_err(|m| {
             scene_error(
                 py,
@@ -176,6 +179,22 @@ impl Scene {
     #[getter]
     fn path(&self) -> Option<String> {
         self.file.clone()
+    }
+
+    /// The scene from its text and file (what unpickling calls): parsed and validated again,
+    /// so that it is the scene that was pickled.
+    #[staticmethod]
+    #[pyo3(signature = (text, path=None))]
+    fn _from_state(py: Python<'_>, text: String, path: Option<String>) -> PyResult<Scene> {
+        Scene::parse(py, path, text)
+    }
+
+    /// Pickled as its text (RON, whose numbers read back bit for bit) and file, so that
+    /// process pools and Dask can pass scenes between processes.
+    fn __reduce__<'py>(slf: &Bound<'py, Self>) -> PyResult<(Bound<'py, PyAny>, SceneState)> {
+        let ctor = slf.get_type().getattr("_from_state")?;
+        let s = slf.get();
+        Ok((ctor, (s.src.clone(), s.file.clone())))
     }
 
     fn __repr__(&self) -> String {
@@ -210,9 +229,11 @@ impl Scene {
         }
         let scene = &self.scene;
         let out = py.detach(|| {
-            std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-                rodnet::pipeline::buckle(scene, modes, linear_only, None).map(|b| b.json)
-            }))
+            crate::fork_safe(|| {
+                std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+                    rodnet::pipeline::buckle(scene, modes, linear_only, None).map(|b| b.json)
+                }))
+            })
         });
         match out {
             Ok(Ok(json)) => crate::to_python(py, &serde_json::to_value(json).expect("serializes")),
@@ -242,9 +263,11 @@ impl Scene {
         let scene = &self.scene;
         let d = [direction.0, direction.1, direction.2];
         let out = py.detach(|| {
-            std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-                rodnet::pipeline::indent(scene, at, d, depth, steps).map(|i| i.json)
-            }))
+            crate::fork_safe(|| {
+                std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
+                    rodnet::pipeline::indent(scene, at, d, depth, steps).map(|i| i.json)
+                }))
+            })
         });
         match out {
             Ok(Ok(json)) => crate::to_python(py, &serde_json::to_value(json).expect("serializes")),
@@ -318,7 +341,7 @@ impl Scene {
         }
         rscene::validate::validate(&sc).map_err(|e| invalid(py, None, "", &e))?;
         let job = Job::Scene(Box::new(sc));
-        let outcome = solve_released(py, progress, |hook| match extrapolate {
+        let outcome = solve_released(py, progress, move |hook| match extrapolate {
             Some(levels) => run::solve_extrapolated(&job, levels, modes, hook),
             None => run::solve(&job, modes, hook),
         })?;

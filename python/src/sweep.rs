@@ -15,7 +15,7 @@ use crate::results::Results;
 use crate::{located, scene_error, solve_released, SolveError};
 
 fn value(py: Python<'_>, name: &str, v: &Bound<'_, PyAny>) -> PyResult<Value> {
-    let j = crate::from_python(v)?;
+    let j = crate::from_python(v, name)?;
     Value::from_json(&j).ok_or_else(|| {
         scene_error(
             py,
@@ -44,7 +44,7 @@ pub fn hemisphere(
     let h = generator::hemisphere(&o)
         .map_err(|(name, m)| scene_error(py, None, None, None, Some(name), &m))?;
     let job = Job::Hemisphere(Box::new(h));
-    let outcome = solve_released(py, progress, |hook| run::solve(&job, None, hook))?;
+    let outcome = solve_released(py, progress, move |hook| run::solve(&job, None, hook))?;
     results_of(py, outcome)
 }
 
@@ -176,7 +176,7 @@ impl Sweep {
                 self.sweep.points.len()
             )));
         }
-        let r = py.detach(|| self.sweep.run_point(i));
+        let r = py.detach(|| crate::fork_safe(|| self.sweep.run_point(i)));
         let o = r.map_err(PyOSError::new_err)?;
         crate::to_python(py, &o.record)
     }

@@ -162,15 +162,18 @@ fn merge(dir: &std::path::Path) -> i32 {
     match table::merge(dir) {
         Ok((p, missing)) => {
             println!("{}", p.display());
-            if !missing.is_empty() {
-                let list: Vec<String> = missing.iter().map(|i| i.to_string()).collect();
-                eprintln!(
-                    "{} point(s) missing (no results file yet): {}",
-                    missing.len(),
-                    list.join(" ")
-                );
+            if missing.is_empty() {
+                return EXIT_OK;
             }
-            EXIT_OK
+            let list: Vec<String> = missing.iter().map(|i| i.to_string()).collect();
+            eprintln!(
+                "{} point(s) missing (no results file yet): {}",
+                missing.len(),
+                list.join(" ")
+            );
+            // An incomplete table is not a finished sweep: scripts that merge and go on must
+            // see it, as they see a point that did not converge.
+            EXIT_NOT_CONVERGED
         }
         Err(e) => bad(e),
     }

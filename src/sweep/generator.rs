@@ -20,6 +20,7 @@ const NOT_OPTIONS: &[&str] = &[
     "scene_out",
     "json",
     "obj",
+    "vtk",
     "report",
     "out_dir",
     "quiet",

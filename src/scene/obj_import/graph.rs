@@ -5,6 +5,7 @@ use std::collections::{BTreeMap, HashMap, HashSet};
 
 use super::{ElementKind, ObjError, ObjFile};
 use crate::math::vec::{dist, dot, norm, sub};
+use crate::scene::validate::MAX_MAGNITUDE;
 
 /// Segments turning by less than this at a vertex where several edges meet continue one rod.
 const CHAIN_MAX_TURN_DEG: f64 = 45.0;
@@ -50,6 +51,18 @@ pub(super) fn graph(obj: &ObjFile, weld_tol: Option<f64>, chain: bool) -> Result
     let (mut lo, mut hi) = ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]);
     for (v, p) in obj.vertices.iter().enumerate() {
         if used[v] {
+            // Beyond the scene's limit the default tolerance (a fraction of the bounding box's
+            // diagonal) would overflow to infinity and weld everything into one point.
+            if let Some(x) = p.iter().find(|x| !x.is_finite() || x.abs() > MAX_MAGNITUDE) {
+                return Err(ObjError {
+                    line: obj.vertex_lines.get(v).copied(),
+                    message: format!(
+                        "vertex {}: coordinate {x:e} is not finite or beyond ±{MAX_MAGNITUDE:e} m \
+                         (the largest a scene accepts)",
+                        v + 1
+                    ),
+                });
+            }
             for k in 0..3 {
                 lo[k] = lo[k].min(p[k]);
                 hi[k] = hi[k].max(p[k]);

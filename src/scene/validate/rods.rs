@@ -18,10 +18,22 @@ pub(super) fn rods(s: &Scene) -> Result<RodIndex<'_>, FieldError> {
     }
     let mut rods: HashMap<&str, &Rod> = HashMap::new();
     let mut total_nodes = 0usize;
+    let origin = crate::scene::translate::origin(s);
     for (i, r) in s.rods.iter().enumerate() {
         let err = |f: &str, msg: String| Err(FieldError::new("rods", i, f, msg));
         if r.name.is_empty() {
             return err("name", "must not be empty".into());
+        }
+        // Names are written into OBJ, CSV and scripts line by line, where a control character
+        // (a newline, a NUL) would end or corrupt a line.
+        if let Some((k, c)) = r.name.chars().enumerate().find(|(_, c)| c.is_control()) {
+            return err(
+                "name",
+                format!(
+                    "must not hold control characters, got {c:?} at character {k} of {:?}",
+                    r.name
+                ),
+            );
         }
         if rods.insert(r.name.as_str(), r).is_some() {
             return err("name", format!("duplicate rod name \"{}\"", r.name));
@@ -45,6 +57,9 @@ pub(super) fn rods(s: &Scene) -> Result<RodIndex<'_>, FieldError> {
             return err("subdivide", format!(
                 "the scene would have more than {MAX_NODES} nodes; reduce `subdivide` (limit in docs/scene-format.md)"
             ));
+        }
+        if let Err(m) = resolution(r, origin) {
+            return err("points", m);
         }
         if let Some(n) = r.normal {
             if !normal_ok(r, n) {
@@ -116,6 +131,39 @@ fn points(r: &Rod) -> Result<(), String> {
         if cosang < -0.99985 {
             return Err(format!(
                 "the rod folds back on itself at point {k} (turning angle above 179°); split it into two rods joined there"
+            ));
+        }
+    }
+    Ok(())
+}
+
+/// Shortest edge accepted, in units of the rounding of the coordinates it is solved in: at
+/// 1000 roundings an edge's length, strain and turning angle are known to 0.1 %; below, the
+/// doubles no longer resolve the rod and Newton's steps are made of round-off.
+const MIN_EDGE_ROUNDINGS: f64 = 1e3;
+
+/// The edges of a rod (its segments cut in `subdivide`) must be long against the rounding of
+/// the coordinates the network is solved in (relative to `origin`, `scene::translate`): a rod
+/// far from the rest of the scene cannot be moved near the origin with it.
+fn resolution(r: &Rod, origin: [f64; 3]) -> Result<(), String> {
+    let m = r.points.len();
+    let far = |k: usize| (0..3).fold(0.0_f64, |a, i| a.max((r.points[k][i] - origin[i]).abs()));
+    for k in 0..segments(r) {
+        let j = (k + 1) % m;
+        let edge = dist(&r.points[k], &r.points[j]) / r.subdivide as f64;
+        let (at, x) = if far(k) >= far(j) {
+            (k, far(k))
+        } else {
+            (j, far(j))
+        };
+        let rounding = x * f64::EPSILON;
+        if edge < MIN_EDGE_ROUNDINGS * rounding {
+            return Err(format!(
+                "point {at} {:?} is {x:.3e} m from where the scene is solved ({origin:?}), where \
+                 doubles round to {rounding:.1e} m: too coarse for this rod's edges of {edge:.3e} m \
+                 (at least {MIN_EDGE_ROUNDINGS:e} roundings needed); draw the scene's rods near \
+                 each other, or nearer the origin",
+                r.points[at]
             ));
         }
     }
