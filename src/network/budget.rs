@@ -21,7 +21,7 @@ use crate::solver::Ordering;
 const BASE_BYTES: u64 = 8 << 20;
 /// Bytes per node that solving a network takes at least: measured 9–11 KB per node on
 /// chains, the cheapest networks (docs/performance.md); [`lower_bound`] takes half of it.
-const MIN_BYTES_PER_NODE: u64 = 8_000;
+pub const MIN_BYTES_PER_NODE: u64 = 8_000;
 /// Vectors of the unknowns' length the Newton iteration, its line search and the results keep
 /// (gradients, steps, scales, weights, snapshots).
 const VECTORS_PER_UNKNOWN: u64 = 24;
