@@ -259,6 +259,12 @@ pub fn load(path: &std::path::Path, a: &NetworkArgs) -> Result<NetworkScene, Str
         Some(l) => format!("{file}:{l}: {}", e.message),
         None => format!("{file}: {}", e.message),
     };
+    obj_import::size::check(
+        &src,
+        a.subdivide.unwrap_or(1),
+        crate::pipeline::memory_limit(),
+    )
+    .map_err(at)?;
     let obj = obj_import::parse(&src).map_err(at)?;
     let defaults = Solver::default();
     let opts = NetworkOptions {

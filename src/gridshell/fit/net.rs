@@ -419,7 +419,7 @@ mod tests {
         } else {
             Layout::On
         };
-        let net = build(&s, &seed, exact.spacing, layout, m);
+        let net = build(&s, &seed, exact.spacing, layout, m, usize::MAX).unwrap();
         let shift = (n / 2) as i64;
         let (mut dx, mut dl) = (0.0f64, 0.0f64);
         for c in &net.crossings {
