@@ -178,7 +178,8 @@ mod tests {
         assert_eq!(parse_cgroup_limit("max\n"), None);
         assert_eq!(parse_cgroup_limit("9223372036854771712\n"), None);
         assert_eq!(parse_cgroup_limit("6442450944\n"), Some(6 << 30));
-        let limits = "Limit                     Soft Limit           Hard Limit           Units     \n\
+        let limits =
+            "Limit                     Soft Limit           Hard Limit           Units     \n\
             Max data size             unlimited            unlimited            bytes     \n\
             Max stack size            8388608              unlimited            bytes     \n\
             Max address space         4294967296           unlimited            bytes     \n";
@@ -187,7 +188,10 @@ mod tests {
         assert_eq!(parse_rlimits(&unlimited), None);
         // A 6 GiB cgroup on a 16 GB machine: 3 GiB, not 8 GB.
         assert_eq!(combined_default(physical, Some(6 << 30), None), 3 << 30);
-        assert_eq!(combined_default(physical, Some(6 << 30), Some(4 << 30)), 2 << 30);
+        assert_eq!(
+            combined_default(physical, Some(6 << 30), Some(4 << 30)),
+            2 << 30
+        );
         assert_eq!(
             combined_default(physical, None, None),
             16_384_000 * 1024 / 2

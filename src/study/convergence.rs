@@ -136,11 +136,19 @@ pub fn plan(problem: &Problem, levels: usize) -> Result<Plan, String> {
             1usize << (level - 1)
         )
     };
+    // The levels below a refused one still make a study.
+    let fewer = |level: usize| {
+        if level > min {
+            format!(" (use --levels {} or fewer)", level - 1)
+        } else {
+            String::new()
+        }
+    };
     match problem {
         Problem::Scene { file, src, scene } => {
             let describe = |level: usize, e: &FieldError| {
                 let mut err = SceneError::from_field(file, src, e);
-                err.message = format!("{}, at {}", err.message, at(level));
+                err.message = format!("{}, at {}{}", err.message, at(level), fewer(level));
                 err.to_string()
             };
             let mut scenes = Vec::with_capacity(levels);
@@ -203,10 +211,11 @@ pub fn plan(problem: &Problem, levels: usize) -> Result<Plan, String> {
             let mut scenes = Vec::with_capacity(levels);
             let invalid = |level: usize, e: &FieldError| {
                 format!(
-                    "the generated scene is invalid at {}: {}: {}",
+                    "the generated scene is invalid at {}: {}: {}{}",
                     at(level),
                     e.path(),
-                    e.message
+                    e.message,
+                    fewer(level)
                 )
             };
             for level in 1..=levels {
