@@ -13,7 +13,8 @@ pub const FALLBACK_MAX_MEMORY: u64 = 4 << 30;
 pub struct LimitArgs {
     /// Refuse (exit 2, before allocating) a scene whose solve is estimated to need more memory
     /// than this, bytes, with an optional suffix K, M, G or T (powers of 1024)
-    /// [default: half of the physical memory; 4G where it cannot be read].
+    /// [default: half of the smallest of physical memory, cgroup limit and RLIMIT_AS/DATA;
+    /// 4G where none can be read].
     #[arg(long, value_name = "BYTES", value_parser = parse_bytes)]
     pub max_memory: Option<u64>,
     /// Stop each solve after this many seconds, writing its last iterate with

@@ -29,7 +29,7 @@ fn spacing_for(s: &Surface, subdivide: usize, nodes: f64) -> f64 {
 /// [`super::net::build`].
 pub fn check(s: &Surface, a: f64, subdivide: usize, memory_limit: u64) -> Result<usize, String> {
     let nodes = estimated_nodes(s, a, subdivide);
-    if !(nodes <= MAX_NODES as f64) {
+    if nodes.is_nan() || nodes > MAX_NODES as f64 {
         return Err(format!(
             "--spacing {a} would give a net of about {nodes:.3e} nodes (2 K A / a² on the \
              mesh's {:.4} m², K = --subdivide {subdivide}), above the limit of {MAX_NODES}; \
