@@ -263,6 +263,8 @@ pub fn load(path: &std::path::Path, a: &NetworkArgs) -> Result<NetworkScene, Str
         &src,
         a.subdivide.unwrap_or(1),
         crate::pipeline::memory_limit(),
+        crate::network::budget::MIN_BYTES_PER_NODE / 2,
+        crate::network::budget::bytes_text,
     )
     .map_err(at)?;
     let obj = obj_import::parse(&src).map_err(at)?;

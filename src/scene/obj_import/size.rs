@@ -5,13 +5,18 @@
 //! and the generator have allocated gigabytes for it (issue 39).
 
 use super::ObjError;
-use crate::network::budget::{bytes_text, MIN_BYTES_PER_NODE};
 use crate::scene::validate::MAX_NODES;
 
 /// Refuses, at the line where it happens, a network with more than [`MAX_NODES`] nodes or with
-/// more than `memory_limit` bytes of their lower bound (`u64::MAX`: no limit).
-pub fn check(src: &str, subdivide: usize, memory_limit: u64) -> Result<(), ObjError> {
-    let per_node = MIN_BYTES_PER_NODE / 2;
+/// more than `memory_limit` bytes at `per_node` bytes a node (`u64::MAX`: no limit); the
+/// solver's layer gives the bound and writes bytes in messages (`bytes_text`).
+pub fn check(
+    src: &str,
+    subdivide: usize,
+    memory_limit: u64,
+    per_node: u64,
+    bytes_text: fn(u64) -> String,
+) -> Result<(), ObjError> {
     let subdivide = subdivide.max(1) as u64;
     let mut edges: u64 = 0;
     // The polyline statement being read (continued with a trailing backslash): its vertices.
@@ -66,6 +71,10 @@ pub fn check(src: &str, subdivide: usize, memory_limit: u64) -> Result<(), ObjEr
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    fn check(src: &str, subdivide: usize, limit: u64) -> Result<(), ObjError> {
+        super::check(src, subdivide, limit, 4000, |b| format!("{b} B"))
+    }
 
     /// Edges are counted across continuation lines and comments; the refusal names the line
     /// where the count passes the limit.
