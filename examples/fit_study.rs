@@ -111,7 +111,9 @@ fn main() {
             exact.spacing,
             Layout::Between,
             net::DEFAULT_STEPS,
-        );
+            rodnet::gridshell::fit::size::MAX_GRID_NODES,
+        )
+        .expect("the study's nets are small");
         let (mut dx, mut dl) = (0.0f64, 0.0f64);
         for c in &n.crossings {
             let (ru, rv) = (&n.rods[c.rods[0]], &n.rods[c.rods[1]]);

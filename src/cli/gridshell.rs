@@ -177,9 +177,7 @@ pub fn hemisphere_spec(a: &HemisphereArgs) -> Result<HemisphereSpec, String> {
     if a.subdivide == 0 {
         return Err("--subdivide must be at least 1".into());
     }
-    // The footprint has 1.3–1.5 n² K nodes (every rod crosses up to n others): checked
-    // before it is generated, so that no request runs away in the generator.
-    let nodes = (3 * a.rods * a.rods / 2).saturating_mul(a.subdivide);
+    let nodes = crate::gridshell::footprint::estimated_nodes(a.rods, a.subdivide);
     if nodes > scene::validate::MAX_NODES {
         return Err(format!(
             "--rods {} --subdivide {} would give about {} nodes (1.5 n² K), above the limit \

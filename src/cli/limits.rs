@@ -13,7 +13,8 @@ pub const FALLBACK_MAX_MEMORY: u64 = 4 << 30;
 pub struct LimitArgs {
     /// Refuse (exit 2, before allocating) a scene whose solve is estimated to need more memory
     /// than this, bytes, with an optional suffix K, M, G or T (powers of 1024)
-    /// [default: half of the physical memory; 4G where it cannot be read].
+    /// [default: half of the smallest of physical memory, cgroup limit and RLIMIT_AS/DATA;
+    /// 4G where none can be read].
     #[arg(long, value_name = "BYTES", value_parser = parse_bytes)]
     pub max_memory: Option<u64>,
     /// Stop each solve after this many seconds, writing its last iterate with
@@ -66,18 +67,88 @@ fn parse_seconds(s: &str) -> Result<f64, String> {
     }
 }
 
-/// Half of the physical memory (`MemTotal` in /proc/meminfo), or [`FALLBACK_MAX_MEMORY`].
+/// Half of the memory this process may take: the smallest of the physical memory (`MemTotal`
+/// in /proc/meminfo), the cgroup's limit (v2 `memory.max`, v1 `memory.limit_in_bytes`) and
+/// the process's RLIMIT_AS and RLIMIT_DATA (/proc/self/limits); [`FALLBACK_MAX_MEMORY`] where
+/// none can be read. Past a cgroup's or rlimit's limit the process is killed or its
+/// allocation aborts, which a refusal with exit 2 must come before.
 pub fn default_max_memory() -> u64 {
-    physical_memory().map_or(FALLBACK_MAX_MEMORY, |m| {
-        (m as f64 * DEFAULT_MEMORY_FRACTION) as u64
-    })
+    let read = |p: &str| std::fs::read_to_string(p).ok();
+    let physical = read("/proc/meminfo").and_then(|t| parse_meminfo(&t));
+    let cgroup = cgroup_files(read("/proc/self/cgroup").as_deref())
+        .iter()
+        .filter_map(|p| read(p).and_then(|t| parse_cgroup_limit(&t)))
+        .min();
+    let rlimit = read("/proc/self/limits").and_then(|t| parse_rlimits(&t));
+    combined_default(physical, cgroup, rlimit)
 }
 
-fn physical_memory() -> Option<u64> {
-    let text = std::fs::read_to_string("/proc/meminfo").ok()?;
+/// [`DEFAULT_MEMORY_FRACTION`] of the smallest of the limits that are known.
+pub fn combined_default(physical: Option<u64>, cgroup: Option<u64>, rlimit: Option<u64>) -> u64 {
+    [physical, cgroup, rlimit]
+        .into_iter()
+        .flatten()
+        .min()
+        .map_or(FALLBACK_MAX_MEMORY, |m| {
+            ((m as f64 * DEFAULT_MEMORY_FRACTION) as u64).max(1)
+        })
+}
+
+/// `MemTotal` of /proc/meminfo, bytes.
+pub fn parse_meminfo(text: &str) -> Option<u64> {
     let line = text.lines().find(|l| l.starts_with("MemTotal:"))?;
     let kib: u64 = line.split_whitespace().nth(1)?.parse().ok()?;
     kib.checked_mul(1024)
+}
+
+/// A cgroup memory limit file's value: v2 `memory.max` ("max": none) or v1
+/// `memory.limit_in_bytes` (a value near 2⁶³, rounded to pages, means none).
+pub fn parse_cgroup_limit(text: &str) -> Option<u64> {
+    let t = text.trim();
+    if t == "max" {
+        return None;
+    }
+    t.parse::<u64>().ok().filter(|&b| b > 0 && b < 1 << 62)
+}
+
+/// The smaller soft limit of "Max address space" and "Max data size" in /proc/self/limits,
+/// bytes ("unlimited": none).
+pub fn parse_rlimits(text: &str) -> Option<u64> {
+    text.lines()
+        .filter_map(|l| {
+            let rest = l
+                .strip_prefix("Max address space")
+                .or_else(|| l.strip_prefix("Max data size"))?;
+            rest.split_whitespace().next()?.parse::<u64>().ok()
+        })
+        .min()
+}
+
+/// The memory limit files that may hold this process: its own cgroup's (from /proc/self/cgroup,
+/// v2 `0::PATH` and v1 `N:memory:PATH`) and the mount's root (a container's own limit where
+/// the namespace hides the path).
+pub fn cgroup_files(proc_self_cgroup: Option<&str>) -> Vec<String> {
+    let mut files = vec![
+        "/sys/fs/cgroup/memory.max".to_string(),
+        "/sys/fs/cgroup/memory/memory.limit_in_bytes".to_string(),
+    ];
+    for line in proc_self_cgroup.unwrap_or("").lines() {
+        let mut parts = line.splitn(3, ':');
+        let (Some(id), Some(controllers), Some(path)) = (parts.next(), parts.next(), parts.next())
+        else {
+            continue;
+        };
+        let path = path.trim().trim_end_matches('/');
+        if path.is_empty() || path.contains("..") {
+            continue;
+        }
+        if id == "0" && controllers.is_empty() {
+            files.push(format!("/sys/fs/cgroup{path}/memory.max"));
+        } else if controllers.split(',').any(|c| c == "memory") {
+            files.push(format!("/sys/fs/cgroup/memory{path}/memory.limit_in_bytes"));
+        }
+    }
+    files
 }
 
 #[cfg(test)]
@@ -96,5 +167,39 @@ mod tests {
             assert!(parse_bytes(bad).is_err(), "{bad}");
         }
         assert!(default_max_memory() > 0);
+    }
+
+    /// The default takes half of the smallest of physical memory, cgroup and rlimit limits;
+    /// "max", "unlimited" and v1's page-rounded 2⁶³ mean no limit.
+    #[test]
+    fn the_default_limit_is_half_the_smallest_of_machine_cgroup_and_rlimit() {
+        let meminfo = "MemTotal:       16384000 kB\nMemFree:         1000 kB\n";
+        let physical = parse_meminfo(meminfo);
+        assert_eq!(physical, Some(16_384_000 * 1024));
+        assert_eq!(parse_cgroup_limit("max\n"), None);
+        assert_eq!(parse_cgroup_limit("9223372036854771712\n"), None);
+        assert_eq!(parse_cgroup_limit("6442450944\n"), Some(6 << 30));
+        let limits =
+            "Limit                     Soft Limit           Hard Limit           Units     \n\
+            Max data size             unlimited            unlimited            bytes     \n\
+            Max stack size            8388608              unlimited            bytes     \n\
+            Max address space         4294967296           unlimited            bytes     \n";
+        assert_eq!(parse_rlimits(limits), Some(4 << 30));
+        let unlimited = limits.replace("4294967296", "unlimited");
+        assert_eq!(parse_rlimits(&unlimited), None);
+        // A 6 GiB cgroup on a 16 GB machine: 3 GiB, not 8 GB.
+        assert_eq!(combined_default(physical, Some(6 << 30), None), 3 << 30);
+        assert_eq!(
+            combined_default(physical, Some(6 << 30), Some(4 << 30)),
+            2 << 30
+        );
+        assert_eq!(
+            combined_default(physical, None, None),
+            16_384_000 * 1024 / 2
+        );
+        assert_eq!(combined_default(None, None, None), FALLBACK_MAX_MEMORY);
+        let files = cgroup_files(Some("12:memory:/user/job7\n0::/user.slice/job7\n"));
+        assert!(files.contains(&"/sys/fs/cgroup/memory/user/job7/memory.limit_in_bytes".into()));
+        assert!(files.contains(&"/sys/fs/cgroup/user.slice/job7/memory.max".into()));
     }
 }

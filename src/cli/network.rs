@@ -259,6 +259,14 @@ pub fn load(path: &std::path::Path, a: &NetworkArgs) -> Result<NetworkScene, Str
         Some(l) => format!("{file}:{l}: {}", e.message),
         None => format!("{file}: {}", e.message),
     };
+    obj_import::size::check(
+        &src,
+        a.subdivide.unwrap_or(1),
+        crate::pipeline::memory_limit(),
+        crate::network::budget::MIN_BYTES_PER_NODE / 2,
+        crate::network::budget::bytes_text,
+    )
+    .map_err(at)?;
     let obj = obj_import::parse(&src).map_err(at)?;
     let defaults = Solver::default();
     let opts = NetworkOptions {

@@ -80,6 +80,13 @@ pub struct HemisphereSpec {
 /// assumes).
 pub const DEFAULT_SECTION_RATIO: f64 = 0.005;
 
+/// Nodes of the footprint of `rods` rods with `subdivide` edges per spacing, about: it has
+/// 1.3–1.5 n² K nodes (every rod crosses up to n others), so that requests are checked before
+/// the footprint is generated and nothing runs away in the generator (saturating).
+pub fn estimated_nodes(rods: usize, subdivide: usize) -> usize {
+    (3 * rods.saturating_mul(rods) / 2).saturating_mul(subdivide)
+}
+
 impl HemisphereSpec {
     /// The default problem for radius `radius`, n rods per family and `subdivide` edges per
     /// crossing spacing: Ball joints, circular rods with r/R = 0.005, E = 1 GPa, ν = 0.3. For a problem

@@ -21,7 +21,7 @@ use crate::solver::Ordering;
 const BASE_BYTES: u64 = 8 << 20;
 /// Bytes per node that solving a network takes at least: measured 9–11 KB per node on
 /// chains, the cheapest networks (docs/performance.md); [`lower_bound`] takes half of it.
-const MIN_BYTES_PER_NODE: u64 = 8_000;
+pub const MIN_BYTES_PER_NODE: u64 = 8_000;
 /// Vectors of the unknowns' length the Newton iteration, its line search and the results keep
 /// (gradients, steps, scales, weights, snapshots).
 const VECTORS_PER_UNKNOWN: u64 = 24;
@@ -46,6 +46,15 @@ impl Estimate {
     /// One line for messages: sizes, the factor's fill and the peak.
     pub fn describe(&self) -> String {
         let f = &self.factor;
+        if f.bytes == u64::MAX {
+            // The symbolic analysis failed: no size can be given, and none is made up.
+            return format!(
+                "{} nodes, {} unknowns, {} Hessian non-zeros: the symbolic analysis of its \
+                 Cholesky factor failed (its indices or its memory overflow), so no solve of \
+                 this size can run",
+                self.nodes, f.unknowns, f.hessian_nnz
+            );
+        }
         format!(
             "{} nodes, {} unknowns, {} Hessian non-zeros, {} non-zeros in the Cholesky factor \
              ({}, {:.1e} flops per factorization): about {} resident{}",
@@ -70,7 +79,11 @@ impl Estimate {
 
 /// Bytes in binary units for messages ("1.5 GiB").
 pub fn bytes_text(b: u64) -> String {
-    const UNITS: [&str; 5] = ["B", "KiB", "MiB", "GiB", "TiB"];
+    if b == u64::MAX {
+        // A saturated count: a number would pretend to know it.
+        return "more than 16 EiB".into();
+    }
+    const UNITS: [&str; 7] = ["B", "KiB", "MiB", "GiB", "TiB", "PiB", "EiB"];
     let mut v = b as f64;
     let mut u = 0;
     while v >= 1024.0 && u + 1 < UNITS.len() {
@@ -234,6 +247,39 @@ fn check_slot_range(scene: &Scene, hessian_nnz: usize) -> Result<(), FieldError>
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// A failed symbolic analysis (saturated to u64::MAX bytes) is described as such, never as
+    /// "16777216 TiB"; large counts take EiB.
+    #[test]
+    fn a_saturated_estimate_is_not_printed_as_a_size() {
+        assert_eq!(bytes_text(u64::MAX), "more than 16 EiB");
+        assert_eq!(bytes_text(3 << 60), "3.0 EiB");
+        assert_eq!(bytes_text(1536), "1.5 KiB");
+        let e = Estimate {
+            nodes: 2_000_000,
+            factor: FactorCost {
+                unknowns: 8_000_000,
+                pairs: 90_000_000,
+                hessian_nnz: 90_000_000,
+                factor_nnz: usize::MAX,
+                flops: f64::INFINITY,
+                bytes: u64::MAX,
+                other_factor_nnz: 0,
+                ordering: Ordering::Auto,
+            },
+            model_bytes: 0,
+            bytes: u64::MAX,
+        };
+        let text = e.describe();
+        assert!(
+            text.contains("symbolic analysis") && !text.contains("TiB"),
+            "{text}"
+        );
+        let scene =
+            crate::scene::parse("c.ron", include_str!("../../networks/cantilever.ron")).unwrap();
+        let refusal = format!("{:?}", refusal(&scene, &text, 4 << 30));
+        assert!(!refusal.contains("16777216"), "{refusal}");
+    }
 
     /// A Hessian past the slot map's indices is refused at the rod that drives the size, one
     /// below them is not.

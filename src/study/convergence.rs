@@ -136,11 +136,19 @@ pub fn plan(problem: &Problem, levels: usize) -> Result<Plan, String> {
             1usize << (level - 1)
         )
     };
+    // The levels below a refused one still make a study.
+    let fewer = |level: usize| {
+        if level > min {
+            format!(" (use --levels {} or fewer)", level - 1)
+        } else {
+            String::new()
+        }
+    };
     match problem {
         Problem::Scene { file, src, scene } => {
             let describe = |level: usize, e: &FieldError| {
                 let mut err = SceneError::from_field(file, src, e);
-                err.message = format!("{}, at {}", err.message, at(level));
+                err.message = format!("{}, at {}{}", err.message, at(level), fewer(level));
                 err.to_string()
             };
             let mut scenes = Vec::with_capacity(levels);
@@ -155,6 +163,10 @@ pub fn plan(problem: &Problem, levels: usize) -> Result<Plan, String> {
                 }
                 validate::validate(&s).map_err(|e| describe(level, &e))?;
                 scenes.push(s);
+            }
+            // The memory lower bound of every level, before any level is built.
+            for (i, s) in scenes.iter().enumerate() {
+                pipeline::check_scene_memory(s).map_err(|e| describe(i + 1, &e))?;
             }
             // The builder checks what depends on the nodes (joint positions, hinge axes, rest
             // shape outside the obstacles), and finer levels have new nodes. It allocates, so it
@@ -194,8 +206,18 @@ pub fn plan(problem: &Problem, levels: usize) -> Result<Plan, String> {
             })
         }
         Problem::Hemisphere { spec, start_cap } => {
+            check_gridshell_levels(spec, levels)?;
             let mut specs = Vec::with_capacity(levels);
-            let mut base = None;
+            let mut scenes = Vec::with_capacity(levels);
+            let invalid = |level: usize, e: &FieldError| {
+                format!(
+                    "the generated scene is invalid at {}: {}: {}{}",
+                    at(level),
+                    e.path(),
+                    e.message,
+                    fewer(level)
+                )
+            };
             for level in 1..=levels {
                 let mut s = spec.clone();
                 s.subdivide = spec
@@ -204,18 +226,16 @@ pub fn plan(problem: &Problem, levels: usize) -> Result<Plan, String> {
                     .ok_or_else(|| format!("--subdivide overflows at {}", at(level)))?;
                 let fp = footprint(&s);
                 validate::validate(&fp.scene)
-                    .and_then(|_| pipeline::build_within_limit(&fp.scene, Ordering::Auto).map(drop))
-                    .map_err(|e| {
-                        format!(
-                            "the generated scene is invalid at {}: {}: {}",
-                            at(level),
-                            e.path(),
-                            e.message
-                        )
-                    })?;
-                base.get_or_insert(fp.scene);
+                    .and_then(|_| pipeline::check_scene_memory(&fp.scene))
+                    .map_err(|e| invalid(level, &e))?;
+                scenes.push(fp.scene);
                 specs.push(s);
             }
+            // Built once every level has passed the cheap checks (the builder allocates).
+            for (i, s) in scenes.iter().enumerate() {
+                pipeline::build_within_limit(s, Ordering::Auto).map_err(|e| invalid(i + 1, &e))?;
+            }
+            let base = scenes.into_iter().next();
             // The crossings are the same at every level; their rest places are in the
             // footprint.
             let base = base.expect("at least one level");
@@ -249,6 +269,28 @@ pub fn plan(problem: &Problem, levels: usize) -> Result<Plan, String> {
             })
         }
     }
+}
+
+/// Refuses, before any footprint is generated (each level's allocates its nodes), the
+/// gridshell levels whose footprint would pass the node limit, naming `--levels`.
+fn check_gridshell_levels(spec: &HemisphereSpec, levels: usize) -> Result<(), String> {
+    for level in 1..=levels {
+        let k = spec.subdivide.saturating_mul(1 << (level - 1));
+        let nodes = crate::gridshell::footprint::estimated_nodes(spec.rods, k);
+        if nodes > validate::MAX_NODES {
+            let fewer = if level > 3 {
+                format!("use --levels {} or fewer", level - 1)
+            } else {
+                "reduce --subdivide or --rods".into()
+            };
+            return Err(format!(
+                "--levels {levels}: level {level} (subdivide {k}) would have about {nodes} \
+                 nodes (1.5 n² K), above the limit of {}; {fewer}",
+                validate::MAX_NODES
+            ));
+        }
+    }
+    Ok(())
 }
 
 impl Plan {

@@ -30,7 +30,7 @@ pub struct Surface {
     vertex_normals: Vec<[f64; 3]>,
     /// Faces whose winding was reversed to agree with the first face's.
     pub flipped: usize,
-    /// Bounding-box diagonal, m.
+    /// Bounding-box diagonal of the triangles, m.
     pub size: f64,
     mesh: TriMesh,
 }
@@ -137,15 +137,22 @@ impl Surface {
             .collect();
         let mesh = TriMesh::new(points, c.triangles.clone())
             .expect("a checked mesh has triangles with valid indices");
-        let (lo, hi) = c.vertices.iter().fold(
-            ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]),
-            |(lo, hi), p| {
-                (
-                    [lo[0].min(p[0]), lo[1].min(p[1]), lo[2].min(p[2])],
-                    [hi[0].max(p[0]), hi[1].max(p[1]), hi[2].max(p[2])],
-                )
-            },
-        );
+        // Over the triangles' corners only: a stray vertex no face uses is not part of the
+        // surface, and the size scales its tolerances and the net's step limits.
+        let (lo, hi) = c
+            .triangles
+            .iter()
+            .flatten()
+            .map(|&k| &c.vertices[k as usize])
+            .fold(
+                ([f64::INFINITY; 3], [f64::NEG_INFINITY; 3]),
+                |(lo, hi), p| {
+                    (
+                        [lo[0].min(p[0]), lo[1].min(p[1]), lo[2].min(p[2])],
+                        [hi[0].max(p[0]), hi[1].max(p[1]), hi[2].max(p[2])],
+                    )
+                },
+            );
         Surface {
             file: file.to_string(),
             vertex_normals: vertex_normals(&c.vertices, &c.triangles),
@@ -157,6 +164,17 @@ impl Surface {
             size: norm(sub(hi, lo)),
             mesh,
         }
+    }
+
+    /// Total area of the triangles, m².
+    pub fn area(&self) -> f64 {
+        self.triangles
+            .iter()
+            .map(|t| {
+                let [a, b, c] = t.map(|k| self.vertices[k as usize]);
+                0.5 * norm(cross(sub(b, a), sub(c, a)))
+            })
+            .sum()
     }
 
     pub fn closest(&self, p: [f64; 3]) -> Closest {

@@ -103,17 +103,38 @@ pub struct Seed {
     pub min_angle: f64,
 }
 
-/// Builds the net with step `a / m`, going no further than `max_steps` along each generator.
-pub fn build(s: &Surface, seed: &Seed, a: f64, m: usize, max_steps: usize) -> FineNet {
+/// Builds the net with step `a / m`, going no further than `max_steps` along each generator,
+/// on a grid of at most `max_nodes` nodes: a larger grid is refused before it is allocated
+/// or filled, with the number of nodes it would have had (at least).
+pub fn build(
+    s: &Surface,
+    seed: &Seed,
+    a: f64,
+    m: usize,
+    max_steps: usize,
+    max_nodes: usize,
+) -> Result<FineNet, usize> {
     let h = a / m as f64;
-    let gens = [
-        generator(s, seed.origin, seed.d1, -1.0, h, max_steps),
-        generator(s, seed.origin, seed.d1, 1.0, h, max_steps),
-        generator(s, seed.origin, seed.d2, -1.0, h, max_steps),
-        generator(s, seed.origin, seed.d2, 1.0, h, max_steps),
-    ];
+    // The grid's width is one more than the first generators' steps: the second pair is held
+    // to what the grid allows beside them, so that no generator walks on past the limit.
+    let first = max_steps.min(max_nodes);
+    let g0 = generator(s, seed.origin, seed.d1, -1.0, h, first);
+    let g1 = generator(s, seed.origin, seed.d1, 1.0, h, first);
+    let second = max_steps.min(max_nodes / (g0.len() + g1.len() + 1));
+    let g2 = generator(s, seed.origin, seed.d2, -1.0, h, second);
+    let g3 = generator(s, seed.origin, seed.d2, 1.0, h, second);
+    // A generator stopped by the grid's limit (not by `max_steps` or the boundary).
+    let cut = |g: &Vec<[f64; 3]>, limit: usize| limit < max_steps && g.len() >= limit;
+    let gens = [g0, g1, g2, g3];
     let reach = [0, 1, 2, 3].map(|k| gens[k].len());
     let (w, hgt) = (reach[0] + reach[1] + 1, reach[2] + reach[3] + 1);
+    let nodes = w.saturating_mul(hgt);
+    if nodes > max_nodes || cut(&gens[0], first) || cut(&gens[1], first) {
+        return Err(nodes.max(max_nodes.saturating_add(1)));
+    }
+    if cut(&gens[2], second) || cut(&gens[3], second) {
+        return Err(max_nodes.saturating_add(1));
+    }
     let mut net = FineNet {
         h,
         m,
@@ -148,7 +169,7 @@ pub fn build(s: &Surface, seed: &Seed, a: f64, m: usize, max_steps: usize) -> Fi
             }
         }
     }
-    net
+    Ok(net)
 }
 
 /// The rhombus's angle at its new corner `c` is outside [θ, π − θ].

@@ -186,6 +186,12 @@ pub fn footprint(
     mesh_path: &str,
     spec: &FitSpec,
 ) -> Result<FitFootprint, String> {
+    let max_grid = super::size::check(
+        surface,
+        spec.spacing,
+        spec.subdivide,
+        crate::pipeline::memory_limit(),
+    )?;
     let seed = seed(surface, spec)?;
     let net = net::build(
         surface,
@@ -193,7 +199,9 @@ pub fn footprint(
         spec.spacing,
         spec.layout,
         net::DEFAULT_STEPS,
-    );
+        max_grid,
+    )
+    .map_err(|grid| super::size::grid_refusal(spec.spacing, grid, max_grid))?;
     let finite = |p: &[f64; 3]| p.iter().all(|x| x.is_finite());
     if !(net.crossings.iter().all(|c| finite(&c.point))
         && net

@@ -6,3 +6,4 @@ pub mod footprint;
 pub mod job;
 pub mod net;
 pub mod report;
+pub mod size;

@@ -112,14 +112,25 @@ pub struct Net {
 /// Fine steps per spacing of the coarser construction (the finer one takes twice as many).
 pub const DEFAULT_STEPS: usize = 4;
 
-/// Builds the net with spacing `a`; `m` even.
-pub fn build(s: &Surface, seed: &Seed, a: f64, layout: Layout, m: usize) -> Net {
-    let max_steps = ((8.0 * s.size / a).ceil() as usize + 2) * 2 * m;
-    let coarse = compass::build(s, seed, a, m, max_steps / 2);
-    let fine = compass::build(s, seed, a, 2 * m, max_steps);
+/// Builds the net with spacing `a`; `m` even. The finer construction's grid has at most
+/// `max_nodes` nodes (the coarser one a quarter): a larger one is refused before it is
+/// allocated, with the number of nodes it would have had (at least).
+pub fn build(
+    s: &Surface,
+    seed: &Seed,
+    a: f64,
+    layout: Layout,
+    m: usize,
+    max_nodes: usize,
+) -> Result<Net, usize> {
+    // Saturating: a spacing far below the mesh's size gives a huge bound, held by `max_nodes`.
+    let max_steps = (((8.0 * s.size / a).ceil() + 2.0) * 2.0 * m as f64).min(usize::MAX as f64);
+    let max_steps = max_steps as usize;
+    let fine = compass::build(s, seed, a, 2 * m, max_steps, max_nodes)?;
+    let coarse = compass::build(s, seed, a, m, max_steps / 2, max_nodes)?;
     let lo = extract(s, &coarse, seed, layout);
     let hi = extract(s, &fine, seed, layout);
-    combine(s, *seed, a, layout, [m, 2 * m], lo, hi)
+    Ok(combine(s, *seed, a, layout, [m, 2 * m], lo, hi))
 }
 
 /// Rods and crossings of one construction, keyed by (family, k) and (k_u, k_v).
@@ -408,7 +419,7 @@ mod tests {
         } else {
             Layout::On
         };
-        let net = build(&s, &seed, exact.spacing, layout, m);
+        let net = build(&s, &seed, exact.spacing, layout, m, usize::MAX).unwrap();
         let shift = (n / 2) as i64;
         let (mut dx, mut dl) = (0.0f64, 0.0f64);
         for c in &net.crossings {
@@ -473,7 +484,7 @@ mod tests {
             min_angle: 10f64.to_radians(),
         };
         let m = 16i64;
-        let net = compass::build(&s, &seed, a, m as usize, 1000);
+        let net = compass::build(&s, &seed, a, m as usize, 1000, usize::MAX).unwrap();
         let (mut worst, mut cells) = (0.0f64, 0);
         let reach = (2.0 / a).ceil() as i64;
         for cj in -reach..reach {

@@ -19,6 +19,7 @@
 
 mod graph;
 mod parse;
+pub mod size;
 mod to_scene;
 
 use std::fmt;
