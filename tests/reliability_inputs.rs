@@ -2,34 +2,16 @@
 //! their place. The bad-scene corpus (tests/bad_scenes, `rod_name_control_character`,
 //! `rod_far_from_the_others`) holds the scene-file cases; these are the OBJ network and sweep ones.
 
-use std::path::PathBuf;
-use std::process::{Command, Output};
+mod common;
 
-fn rodnet() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_rodnet"))
-}
-
-fn tmpdir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("rodnet-rel-in-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
-fn text(o: &Output) -> String {
-    format!(
-        "{}{}",
-        String::from_utf8_lossy(&o.stdout),
-        String::from_utf8_lossy(&o.stderr)
-    )
-}
+use common::cli::{rodnet, text, tmpdir};
 
 /// An OBJ network whose coordinates are beyond the scene limit (1e100 m) is refused at the
 /// vertex's line: the default weld tolerance (1e-6 × the bounding box's diagonal) overflowed to
 /// infinity there and reported every segment as zero-length "within the weld tolerance inf m".
 #[test]
 fn obj_vertices_beyond_the_scene_limit_are_refused_at_their_line() {
-    let d = tmpdir("obj");
+    let d = tmpdir("rel-in", "obj");
     for (x, line) in [("1e200", 2), ("1e308", 2)] {
         let obj = d.join("big.obj");
         std::fs::write(&obj, format!("v 0 0 0\nv {x} 0 0\nv 0 1 0\nl 1 3\nl 3 2\n")).unwrap();
@@ -59,7 +41,7 @@ fn obj_vertices_beyond_the_scene_limit_are_refused_at_their_line() {
 /// point wrote; a sweep refuses it, naming it, before any solve.
 #[test]
 fn a_sweep_refuses_the_vtk_output_option_by_name() {
-    let d = tmpdir("vtk");
+    let d = tmpdir("rel-in", "vtk");
     let sweep = d.join("dome.ron");
     std::fs::write(
         &sweep,

@@ -2,23 +2,16 @@
 //! files are refused, located and with exit 2, before anything of that size is allocated or
 //! stepped through. The inputs here are small; what they ask for is not.
 
+mod common;
+
+use common::cli::{rodnet, tmpdir};
+
 use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::process::Output;
 
 use rodnet::gridshell::fit::size;
 use rodnet::scene::validate::MAX_NODES;
 use rodnet::surface::{shapes, Surface};
-
-fn rodnet() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_rodnet"))
-}
-
-fn temp(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("rodnet-limits-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
 
 fn write(d: &Path, name: &str, text: &str) -> PathBuf {
     let p = d.join(name);
@@ -41,7 +34,7 @@ fn dome() -> String {
 /// without end at 1e-9) is refused naming `--spacing` and the smallest spacing that fits.
 #[test]
 fn a_fit_spacing_far_below_the_mesh_is_refused_naming_the_smallest_spacing() {
-    let d = temp("fit");
+    let d = tmpdir("limits", "fit");
     let mesh = write(&d, "dome.obj", &dome());
     for spacing in ["1e-4", "1e-9", "1e-300"] {
         let out = rodnet()
@@ -89,7 +82,7 @@ fn a_fit_spacing_far_below_the_mesh_is_refused_naming_the_smallest_spacing() {
 #[test]
 fn the_fit_size_estimate_is_the_built_nets_and_its_smallest_spacing_is_the_limit() {
     let s = Surface::from_obj("dome.obj", &dome()).unwrap();
-    let d = temp("estimate");
+    let d = tmpdir("limits", "estimate");
     let mesh = write(&d, "dome.obj", &dome());
     for (spacing, k) in [(0.25, 4), (0.1, 2)] {
         let out = rodnet()
@@ -137,7 +130,7 @@ fn a_stray_vertex_does_not_make_the_surface_large() {
 /// one past `--max-memory` likewise names it.
 #[test]
 fn an_obj_network_past_the_limits_is_refused_at_its_line() {
-    let d = temp("net");
+    let d = tmpdir("limits", "net");
     // 20 polylines of 101 vertices: 2000 edges; × --subdivide 1001 passes 2M nodes at the
     // polyline that brings the edges past 1998.
     let mut text = String::new();

@@ -2,27 +2,12 @@
 //! Slurm scripts cannot be made to run a command by a path, named FIFOs are refused as outputs
 //! before the solve, `max_iterations` is bounded and a time limit is one budget for the whole job.
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+mod common;
 
-fn rodnet() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_rodnet"))
-}
+use common::cli::{rodnet, text, tmpdir};
 
-fn tmpdir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("rodnet-rel-out-{name}-{}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
-fn text(o: &Output) -> String {
-    format!(
-        "{}{}",
-        String::from_utf8_lossy(&o.stdout),
-        String::from_utf8_lossy(&o.stderr)
-    )
-}
+use std::path::Path;
+use std::process::Command;
 
 fn energy(p: &Path) -> f64 {
     let v: serde_json::Value = serde_json::from_slice(&std::fs::read(p).unwrap()).unwrap();
@@ -36,7 +21,7 @@ const SWEEP: &str = r#"Sweep(scene: "beam.ron", grid: {"solver.max_iterations": 
 /// scene's, solved on its own); with nothing changed, both points are kept.
 #[test]
 fn a_resumed_sweep_recomputes_points_whose_inputs_changed() {
-    let d = tmpdir("sweep");
+    let d = tmpdir("rel-out", "sweep");
     let beam = d.join("beam.ron");
     std::fs::copy("networks/cantilever.ron", &beam).unwrap();
     let sweep = d.join("s.ron");
@@ -78,7 +63,7 @@ fn a_resumed_sweep_recomputes_points_whose_inputs_changed() {
 /// is written: it would start a line of the script of its own.
 #[test]
 fn slurm_scripts_refuse_paths_with_control_characters() {
-    let d = tmpdir("slurm");
+    let d = tmpdir("rel-out", "slurm");
     std::fs::copy("networks/cantilever.ron", d.join("beam.ron")).unwrap();
     let evil = d.join("s\ntouch ran\n.ron");
     std::fs::write(&evil, SWEEP).unwrap();
@@ -111,7 +96,7 @@ fn slurm_scripts_refuse_paths_with_control_characters() {
 #[cfg(unix)]
 #[test]
 fn a_named_fifo_output_is_refused_before_the_solve() {
-    let d = tmpdir("fifo");
+    let d = tmpdir("rel-out", "fifo");
     let fifo = d.join("out.json");
     let made = Command::new("mkfifo").arg(&fifo).status();
     if !made.is_ok_and(|s| s.success()) {

@@ -1,6 +1,8 @@
 //! Shared helpers for integration tests: a deterministic random source and scene builders.
 #![allow(dead_code)]
 
+pub mod cli;
+
 use std::collections::BTreeMap;
 
 use rodnet::scene::types::*;
