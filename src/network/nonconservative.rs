@@ -14,21 +14,23 @@ impl Model {
     /// The 2-norm of the missing skew stiffness in the unknowns divided by their scales
     /// (`unknown_scales`: 1 for angles): the largest frame's ½·λ·|ΣT| (block diagonal).
     pub fn dead_torque_skew(&self) -> f64 {
+        // Without allocating (the solver asks at every shifted iteration): each frame's sum is
+        // taken at its first torque.
+        let torques = &self.terms.torques;
         let lambda = self.state.load_factor;
-        let mut by_frame: Vec<(usize, [f64; 3])> = Vec::new();
-        for t in &self.terms.torques {
-            if t.vars.iter().all(|&v| self.free[v] == FIXED) {
+        let mut largest: f64 = 0.0;
+        for (i, t) in torques.iter().enumerate() {
+            let first = torques[..i].iter().all(|u| u.frame != t.frame);
+            if !first || t.vars.iter().all(|&v| self.free[v] == FIXED) {
                 continue;
             }
-            match by_frame.iter_mut().find(|(f, _)| *f == t.frame) {
-                Some((_, sum)) => (0..3).for_each(|k| sum[k] += t.torque[k]),
-                None => by_frame.push((t.frame, t.torque)),
+            let mut sum = [0.0; 3];
+            for u in torques[i..].iter().filter(|u| u.frame == t.frame) {
+                (0..3).for_each(|k| sum[k] += u.torque[k]);
             }
+            largest = largest.max(0.5 * (lambda * norm(sum)).abs());
         }
-        by_frame
-            .iter()
-            .map(|(_, sum)| 0.5 * (lambda * norm(*sum)).abs())
-            .fold(0.0, f64::max)
+        largest
     }
 
     /// S·v for a direction `v` of the free unknowns, S the skew stiffness −½λT̂ of each
