@@ -17,6 +17,9 @@ use super::verdict::finish;
 const ATTEMPT_CAP: usize = 8;
 /// Smallest continuation increment, as a fraction of the whole load path.
 const MIN_INCREMENT: f64 = 1e-5;
+/// A sub-step judged a snap is retried with a quarter of its increment until the increment is
+/// at most this share of the load step: a real snap stays a jump, a smooth branch does not.
+const SNAP_BRACKET: f64 = 1.0 / 64.0;
 /// Converged states the predictor extrapolates from, besides the current one.
 const HISTORY: usize = 2;
 /// Residual to which intermediate continuation sub-steps are converged (or the solve's tolerance
@@ -314,6 +317,7 @@ impl Path {
             }
             let saved = p.snapshot();
             let start = p.unknown_positions();
+            let mut linear = None;
             match prev.last() {
                 Some((lp, _)) if self.lam > *lp => self.predict(p, prev, next, &saved),
                 Some(_) => p.set_continuation(self.load(next)),
@@ -329,7 +333,12 @@ impl Path {
                         self.inc = (0.25 * self.inc).max(MIN_INCREMENT);
                         continue;
                     }
-                    Ok(_) => p.keep_lengths(&saved),
+                    Ok(held) => {
+                        if !held {
+                            linear = linear_response(st, p, &saved);
+                        }
+                        p.keep_lengths(&saved)
+                    }
                 },
             }
             let minimal = self.inc <= MIN_INCREMENT * 1.0001;
@@ -357,13 +366,28 @@ impl Path {
             // step, which does not judge, and keep the verdict of the one before.)
             lim.judge_stability = next >= 1.0 || s.intermediate;
             let before = st.report.iterations;
-            let predicted = p.unknown_positions();
+            // Where the linear response was cut short or refused as the start, the whole of it
+            // is still what a smooth branch's end is measured against.
+            let predicted = linear.or_else(|| p.unknown_positions());
             let turns = (st.report.regularized_iterations, st.report.saddle_escapes);
             st.escaped = None;
             match st.iterate(p, s, &lim, k) {
                 o @ (Outcome::Converged | Outcome::AtFloor) => {
                     let ends = (self.load(self.lam), self.load(next));
                     if let (Some(start), Some(predicted)) = (&start, &predicted) {
+                        // A jump is called a snap only once it survives increments this small:
+                        // over a long increment a smooth branch's end also lies far from a
+                        // poor prediction (none at all when the linear response was refused),
+                        // and iterates far from equilibrium are indefinite on any branch.
+                        let refinable = !last_chance
+                            && next - self.lam > SNAP_BRACKET / self.steps as f64
+                            && st.report.iterations - its_before + ATTEMPT_CAP < s.max_iterations;
+                        if refinable && snap_of(st, p, ends, (start, predicted), turns).is_some() {
+                            st.report.retries += 1;
+                            p.restore(&saved);
+                            self.inc = (0.25 * (next - self.lam)).max(MIN_INCREMENT);
+                            continue;
+                        }
                         judge_substep(st, p, (&saved, ends), (start, predicted), turns);
                     }
                     st.report.substeps += 1;
@@ -396,6 +420,47 @@ impl Path {
 /// snap, else a bifurcation where the saddle escape ran (located from the curvature of its
 /// direction at the sub-step's start, `saved`). `turns`: the regularized iterations and saddle
 /// escapes counted before the sub-step.
+/// Positions of the whole linear response to the increment from the state `from` (Newton's
+/// step `d` after `tangent_predict`), without moving the state.
+fn linear_response<P: NewtonProblem>(
+    st: &Newton,
+    p: &mut P,
+    from: &P::Snapshot,
+) -> Option<Vec<[f64; 3]>> {
+    let here = p.snapshot();
+    p.restore(from);
+    // Even where a step that long is refused: only its positions are read.
+    p.accept(&st.d, 1.0);
+    let x = p.unknown_positions();
+    p.restore(&here);
+    x
+}
+
+/// The snap that [`judge_substep`] would record for a converged sub-step, if any.
+fn snap_of<P: NewtonProblem>(
+    st: &Newton,
+    p: &P,
+    ends: (f64, f64),
+    (start, predicted): (&[[f64; 3]], &[[f64; 3]]),
+    turns: (usize, usize),
+) -> Option<super::path_events::PathEvent> {
+    let escapes = st.report.saddle_escapes - turns.1;
+    if escapes > 0 || st.leaving_path {
+        return None;
+    }
+    let end = p.unknown_positions()?;
+    Judged {
+        from: ends.0,
+        to: ends.1,
+        start,
+        predicted,
+        end: &end,
+        regularized: st.report.regularized_iterations - turns.0,
+        escapes,
+    }
+    .snap()
+}
+
 fn judge_substep<P: NewtonProblem>(
     st: &mut Newton,
     p: &mut P,
