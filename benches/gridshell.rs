@@ -13,8 +13,8 @@ use rodnet::network::assembly::HessianSlots;
 use rodnet::network::build::build;
 use rodnet::network::model::Model;
 use rodnet::pipeline::{settings_of, solve_scene};
+use rodnet::solver::linalg::nested_dissection;
 use rodnet::solver::linalg::SparseCholesky;
-use rodnet::solver::ordering::nested_dissection;
 
 fn main() {
     divan::main();

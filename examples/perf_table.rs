@@ -17,8 +17,8 @@ use rodnet::gridshell::formfind::DEFAULT_START_CAP;
 use rodnet::gridshell::job::run;
 use rodnet::network::assembly::{Assembly, HessianOut};
 use rodnet::network::build::build;
+use rodnet::solver::linalg::nested_dissection;
 use rodnet::solver::linalg::SparseCholesky;
-use rodnet::solver::ordering::nested_dissection;
 
 fn median(mut v: Vec<f64>) -> f64 {
     v.sort_by(f64::total_cmp);

@@ -14,7 +14,7 @@ use crate::energy::registry::TermVisitor;
 use crate::energy::Term;
 use crate::scene::types::Scene;
 use crate::scene::FieldError;
-use crate::solver::budget::{factor_cost, FactorCost};
+use crate::solver::linalg::{factor_cost, FactorCost};
 use crate::solver::Ordering;
 
 /// Resident bytes of the process before the scene: binary, allocator, thread pool.
@@ -135,7 +135,13 @@ fn term_bytes(m: &Model) -> (u64, u64) {
 pub fn estimate(net: &Network, ordering: Ordering) -> Estimate {
     let m = &net.model;
     let pairs = m.hessian_pattern();
-    let factor = factor_cost(m.n_free, &pairs, || Some(m.unknown_positions()), ordering);
+    let factor = factor_cost(
+        m.n_free,
+        &pairs,
+        || Some(m.unknown_positions()),
+        ordering,
+        &m.analyses,
+    );
     drop(pairs);
     let (terms, slots) = term_bytes(m);
     let vars = m.state.q.len() as u64;

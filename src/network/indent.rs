@@ -102,7 +102,8 @@ pub fn linear_stiffness(
         }
     }
     let mut p = NetworkProblem::of_network(net);
-    let c = spectrum::compliance(&mut p, &f, Ordering::Auto)?;
+    let analyses = p.model.analyses.clone();
+    let c = spectrum::compliance(&mut p, &f, Ordering::Auto, &analyses)?;
     if c > 0.0 && c.is_finite() {
         Ok(1.0 / c)
     } else {

@@ -13,6 +13,7 @@ use crate::network::contact::Contact;
 use crate::network::roller::{Rollers, SlantedRoller};
 use crate::network::scratch::Scratch;
 use crate::rod::frames::EdgeRef;
+use crate::solver::linalg::AnalysisCache;
 use crate::variables::{DofLayout, FrameRef, State, Unknowns, VarKind};
 
 pub use crate::variables::FIXED;
@@ -148,6 +149,9 @@ pub struct Model {
     /// zero, or a point near the centre of a scene far from the origin (`scene::translate`).
     /// Positions in `q` are relative to it; results are given in the scene's coordinates.
     pub origin: [f64; 3],
+    /// The analyses of the Hessian patterns factored for this model (its memory estimate, its
+    /// solves and eigen-analyses), shared with its clones and freed with the last of them.
+    pub analyses: AnalysisCache,
 }
 
 /// The pieces a [`Model`] is made of (everything but the free map, which follows from `fixed`).
@@ -195,6 +199,7 @@ impl Model {
             rollers: Rollers::new(p.rollers, p.layout.len()),
             scratch: Scratch::default(),
             origin: [0.0; 3],
+            analyses: AnalysisCache::default(),
         }
     }
 

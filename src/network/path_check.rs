@@ -81,7 +81,8 @@ pub fn critical_on_path(net: &mut Network, settings: &NewtonSettings, guess: f64
 
 /// The lowest eigenvalue (N/m) of the problem's Hessian at its current state.
 fn lowest(p: &mut NetworkProblem, ebar: f64) -> Result<f64, String> {
-    let sp = spectrum::lowest_modes(p, 2, Ordering::Auto)?;
+    let analyses = p.model.analyses.clone();
+    let sp = spectrum::lowest_modes(p, 2, Ordering::Auto, &analyses)?;
     Ok(sp.values.first().copied().unwrap_or(f64::INFINITY) / (ebar * ebar))
 }
 

@@ -134,7 +134,8 @@ impl<'m> NetworkProblem<'m> {
         let kept = self.kept.take().and_then(|k| {
             (k.fingerprint == fingerprint && k.ordering == settings.ordering).then_some(k.chol)
         });
-        let (report, chol) = crate::solver::solve_with(self, settings, kept);
+        let analyses = self.model.analyses.clone();
+        let (report, chol) = crate::solver::solve_with(self, settings, kept, &analyses);
         self.kept = Some(Kept {
             fingerprint,
             ordering: settings.ordering,

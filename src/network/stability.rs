@@ -51,7 +51,8 @@ pub fn analyse(net: &mut Network, k: usize) -> Result<Stability, String> {
 pub fn analyse_problem(p: &mut NetworkProblem, k: usize) -> Result<Stability, String> {
     let t0 = Instant::now();
     let ebar = mean_edge(p.model);
-    let sp = spectrum::lowest_modes(p, k, Ordering::Auto)?;
+    let analyses = p.model.analyses.clone();
+    let sp = spectrum::lowest_modes(p, k, Ordering::Auto, &analyses)?;
     let zero: Vec<Vec<f64>> = zero_vectors(&sp);
     let gauge = !zero.is_empty() && crate::solver::NewtonProblem::gauge_only(p, &zero);
     let negative = (0..sp.values.len())
@@ -102,7 +103,8 @@ pub struct LinearBuckling {
 pub fn buckling(net: &mut Network, k: usize) -> Result<LinearBuckling, String> {
     let t0 = Instant::now();
     let mut p = NetworkProblem::of_network(net);
-    let b = spectrum::linear_buckling(&mut p, k, Ordering::Auto)?;
+    let analyses = p.model.analyses.clone();
+    let b = spectrum::linear_buckling(&mut p, k, Ordering::Auto, &analyses)?;
     Ok(LinearBuckling {
         factors: b.factors,
         modes: b.modes,

@@ -207,7 +207,8 @@ fn settle_any(
     net.model.state = start;
     net.model.commit();
     let mut p = crate::network::problem::NetworkProblem::new(&mut net.model);
-    let r = crate::solver::saddle::converge_any(&mut p, settings, path);
+    let analyses = p.model.analyses.clone();
+    let r = crate::solver::saddle::converge_any(&mut p, settings, path, &analyses);
     drop(p);
     if r.converged && !found.iter().any(|f| same(net, &f.state, size)) {
         found.push(describe(net, r, how)?);

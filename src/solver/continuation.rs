@@ -3,9 +3,8 @@
 
 use std::time::{Duration, Instant};
 
-use super::linalg::SparseCholesky;
+use super::linalg::{AnalysisCache, SparseCholesky};
 use super::newton::{Limits, Newton, Outcome};
-use super::ordering::factorization;
 use super::path_events::{bifurcation, Judged};
 use super::problem::NewtonProblem;
 use super::qp::StepQp;
@@ -36,20 +35,22 @@ pub const INTERMEDIATE_TOLERANCE: f64 = 1e-6;
 const INTERMEDIATE_STEP: f64 = 1e-2;
 
 pub fn solve<P: NewtonProblem + Send>(p: &mut P, s: &NewtonSettings) -> NewtonReport {
-    solve_with(p, s, None).0
+    solve_with(p, s, None, &AnalysisCache::default()).0
 }
 
 /// [`solve`], starting from the factorization object of an earlier solve of the same problem
 /// (`kept`) when its Hessian pattern has not changed since, so that its pattern, slots and
 /// factor storage are not made again (form finding's cap steps: one per step, docs/performance.md).
 /// The caller vouches that the pattern and the ordering asked for are unchanged; `p`'s Hessian
-/// slots are then still those set for it. Returns the factorization object for the next solve.
+/// slots are then still those set for it. Otherwise the pattern's analysis is taken from, or
+/// kept in, `analyses`. Returns the factorization object for the next solve.
 pub fn solve_with<P: NewtonProblem + Send>(
     p: &mut P,
     s: &NewtonSettings,
     kept: Option<SparseCholesky>,
+    analyses: &AnalysisCache,
 ) -> (NewtonReport, SparseCholesky) {
-    super::pool::in_pool(|| solve_here(p, s, kept))
+    super::pool::in_pool(|| solve_here(p, s, kept, analyses))
 }
 
 /// [`solve_with`] on the calling thread.
@@ -57,6 +58,7 @@ fn solve_here<P: NewtonProblem>(
     p: &mut P,
     s: &NewtonSettings,
     kept: Option<SparseCholesky>,
+    analyses: &AnalysisCache,
 ) -> (NewtonReport, SparseCholesky) {
     let t0 = Instant::now();
     let deadline = s.deadline.or_else(|| {
@@ -68,7 +70,8 @@ fn solve_here<P: NewtonProblem>(
         Some(chol) => chol,
         None => {
             let pairs = p.hessian_pattern();
-            let (chol, slots) = factorization(p, n, &pairs, s.ordering);
+            let (chol, slots) =
+                analyses.factorization(n, &pairs, s.ordering, || p.unknown_positions());
             p.set_hessian_slots(&slots);
             chol
         }

@@ -1,12 +1,10 @@
 //! Newton's method on the total energy, its linear algebra, and its settings.
 pub mod arc_length;
-pub mod budget;
 pub mod continuation;
 pub mod linalg;
 pub mod line_search;
 mod modes;
 pub mod newton;
-pub mod ordering;
 pub mod path_events;
 pub mod pool;
 pub mod problem;
@@ -16,12 +14,10 @@ pub mod saddle;
 pub mod settings;
 pub mod spectrum;
 mod step;
-mod supernodal_solve;
-pub mod symbolic;
 pub mod verdict;
 
 pub use continuation::{solve, solve_with};
-pub use ordering::Ordering;
+pub use linalg::Ordering;
 pub use problem::NewtonProblem;
 pub use settings::{
     ConstraintReport, Continuation, LimitPoint, NewtonReport, NewtonSettings, Progress,

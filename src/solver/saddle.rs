@@ -4,6 +4,7 @@
 //! It converges to the equilibrium nearest its start whatever its stability; a symmetric start
 //! (a straight column) keeps its symmetry, where the energy-decreasing iteration would leave it.
 
+use super::linalg::AnalysisCache;
 use super::newton::Newton;
 use super::problem::NewtonProblem;
 use super::settings::{NewtonReport, NewtonSettings};
@@ -20,13 +21,15 @@ const FLOOR_CHECK: f64 = 1e-2;
 
 /// Converges from the problem's current state at each continuation parameter of `path` in
 /// turn, each from the last (one workspace, one symbolic analysis, for the whole path); the
-/// report is the last solve's (or the first that did not converge), with the work of all.
+/// report is the last solve's (or the first that did not converge), with the work of all. The
+/// pattern's analysis is taken from, or kept in, `analyses`.
 pub fn converge_any<P: NewtonProblem>(
     p: &mut P,
     settings: &NewtonSettings,
     path: &[f64],
+    analyses: &AnalysisCache,
 ) -> NewtonReport {
-    let mut nt = newton_for(p, settings.ordering);
+    let mut nt = newton_for(p, settings.ordering, analyses);
     let mut report = NewtonReport::default();
     let (mut iterations, mut factorizations, mut seconds) = (0, 0, 0.0);
     for &lambda in path {

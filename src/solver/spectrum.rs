@@ -7,9 +7,9 @@
 //! and gridshells), which a block resolves without reorthogonalization or restarts; the
 //! price is a few more solves per converged pair (docs/stability.md).
 
+use super::linalg::AnalysisCache;
 use super::modes::{generalized, gram, orthonormalize, ritz_vectors, start_block, wdot};
 use super::newton::Newton;
-use super::ordering::factorization;
 use super::problem::NewtonProblem;
 use super::Ordering;
 
@@ -90,8 +90,9 @@ pub fn lowest_modes<P: NewtonProblem>(
     p: &mut P,
     k: usize,
     ordering: Ordering,
+    analyses: &AnalysisCache,
 ) -> Result<Spectrum, String> {
-    let mut nt = newton_for(p, ordering);
+    let mut nt = newton_for(p, ordering, analyses);
     let n = nt.g.len();
     let k = k.min(n);
     let e = p.assemble(&mut nt.g, Some(&mut nt.chol.values));
@@ -149,8 +150,9 @@ pub fn linear_buckling<P: NewtonProblem>(
     p: &mut P,
     k: usize,
     ordering: Ordering,
+    analyses: &AnalysisCache,
 ) -> Result<Buckling, String> {
-    let mut nt = newton_for(p, ordering);
+    let mut nt = newton_for(p, ordering, analyses);
     let n = nt.g.len();
     p.set_continuation(0.0);
     let e0 = p.assemble(&mut nt.g, Some(&mut nt.chol.values));
@@ -300,8 +302,9 @@ pub fn compliance<P: NewtonProblem>(
     p: &mut P,
     f: &[f64],
     ordering: Ordering,
+    analyses: &AnalysisCache,
 ) -> Result<f64, String> {
-    let mut nt = newton_for(p, ordering);
+    let mut nt = newton_for(p, ordering, analyses);
     let e = p.assemble(&mut nt.g, Some(&mut nt.chol.values));
     if !e.is_finite() {
         return Err("the energy is not finite at this state".into());
@@ -318,11 +321,16 @@ pub fn compliance<P: NewtonProblem>(
     Ok(x.iter().zip(f).map(|(a, b)| a * b).sum())
 }
 
-/// A Newton workspace over `p` with its Hessian pattern, factor and unknown scales.
-pub(super) fn newton_for<P: NewtonProblem>(p: &mut P, ordering: Ordering) -> Newton {
+/// A Newton workspace over `p` with its Hessian pattern (analysed in, or taken from,
+/// `analyses`), factor and unknown scales.
+pub(super) fn newton_for<P: NewtonProblem>(
+    p: &mut P,
+    ordering: Ordering,
+    analyses: &AnalysisCache,
+) -> Newton {
     let n = p.num_free();
     let pairs = p.hessian_pattern();
-    let (chol, slots) = factorization(p, n, &pairs, ordering);
+    let (chol, slots) = analyses.factorization(n, &pairs, ordering, || p.unknown_positions());
     p.set_hessian_slots(&slots);
     let mut nt = Newton::new(chol, None, n);
     p.unknown_scales(&mut nt.scales);

@@ -13,10 +13,6 @@ use std::sync::atomic::{AtomicU32, AtomicU8};
 
 use faer::sparse::SymbolicSparseColMat;
 
-use super::linalg::SparseCholesky;
-use super::problem::NewtonProblem;
-use super::symbolic::analyse;
-
 /// Below this many unknowns a part is not split further.
 const LEAF: usize = 64;
 
@@ -201,19 +197,6 @@ impl Dissection<'_> {
             .max_by(|&a, &b| (hi[a] - lo[a]).total_cmp(&(hi[b] - lo[b])))
             .unwrap()
     }
-}
-
-/// The sparse Cholesky of the problem's Hessian pattern, with the ordering `ordering` asks for,
-/// on the pattern's analysis made once per process ([`super::symbolic::analyse`]).
-pub(super) fn factorization<P: NewtonProblem>(
-    p: &P,
-    n: usize,
-    pairs: &[(usize, usize)],
-    ordering: Ordering,
-) -> (SparseCholesky, Vec<usize>) {
-    let (symbolic, slots) =
-        analyse(n, pairs, ordering, || p.unknown_positions()).expect("symbolic Cholesky analysis");
-    (SparseCholesky::from_symbolic(symbolic), slots)
 }
 
 /// The elimination order of the upper triangle `pattern` that `ordering` asks for: AMD below

@@ -6,10 +6,11 @@
 use faer::sparse::linalg::cholesky::{SymbolicCholesky, SymbolicCholeskyRaw};
 use faer::Par;
 
+use super::cache::AnalysisCache;
 use super::ordering::Ordering;
-use super::symbolic::{analyse_pattern, structure_bytes};
+use super::symbolic::structure_bytes;
 
-/// The cost of factoring one Hessian pattern the way [`super::solve`] will.
+/// The cost of factoring one Hessian pattern the way the solver will.
 #[derive(Debug, Clone, Copy, PartialEq)]
 pub struct FactorCost {
     /// Unknowns (the matrix dimension).
@@ -45,17 +46,18 @@ struct Analysis {
 }
 
 /// The cost of factoring the pattern `pairs` (upper-triangle pairs, as
-/// [`super::NewtonProblem::hessian_pattern`] lists them) of an `n`-unknown problem with
+/// [`crate::solver::NewtonProblem::hessian_pattern`] lists them) of an `n`-unknown problem with
 /// `ordering`, unknowns placed at `positions` (for the nested dissection; `None`: AMD only,
-/// as the solver does when the problem gives no positions). The symbolic analysis is the one
-/// the solve then takes from [`super::symbolic::analyse`]'s cache.
+/// as the solver does when the problem gives no positions). The symbolic analysis is kept in
+/// `analyses`, where a solve sharing that cache then finds it.
 pub fn factor_cost(
     n: usize,
     pairs: &[(usize, usize)],
     positions: impl FnOnce() -> Option<Vec<[f64; 3]>>,
     ordering: Ordering,
+    analyses: &AnalysisCache,
 ) -> FactorCost {
-    let Some(symbolic) = analyse_pattern(n, pairs, ordering, positions) else {
+    let Some(symbolic) = analyses.analyse_pattern(n, pairs, ordering, positions) else {
         // The symbolic analysis failed (index overflow): nothing this large can be factored.
         return FactorCost {
             unknowns: n,
@@ -141,8 +143,9 @@ fn analysis(sym: &SymbolicCholesky<usize>) -> Analysis {
 
 #[cfg(test)]
 mod tests {
+    use super::super::ordering::{grid_graph, nested_dissection};
+    use super::super::SparseCholesky;
     use super::*;
-    use crate::solver::linalg::SparseCholesky;
 
     /// The symbolic count is the factor the solver allocates, on a 2-D grid with both
     /// orderings.
@@ -150,15 +153,22 @@ mod tests {
     fn counts_the_factor_the_solver_allocates() {
         let m = 30;
         let n = m * m;
-        let (pairs, pts) = crate::solver::ordering::grid_graph(m);
-        let amd = factor_cost(n, &pairs, || Some(pts.clone()), Ordering::Amd);
+        let (pairs, pts) = grid_graph(m);
+        let cache = AnalysisCache::default();
+        let amd = factor_cost(n, &pairs, || Some(pts.clone()), Ordering::Amd, &cache);
         assert_eq!(
             amd.factor_nnz,
             SparseCholesky::new(n, &pairs).0.factor_nnz()
         );
         assert_eq!(amd.hessian_nnz, pairs.len());
-        let nd = factor_cost(n, &pairs, || Some(pts.clone()), Ordering::NestedDissection);
-        let order = crate::solver::ordering::nested_dissection(n, &pairs, &pts);
+        let nd = factor_cost(
+            n,
+            &pairs,
+            || Some(pts.clone()),
+            Ordering::NestedDissection,
+            &cache,
+        );
+        let order = nested_dissection(n, &pairs, &pts);
         let solver = SparseCholesky::with_order(n, &pairs, Some(&order)).0;
         assert_eq!(nd.factor_nnz, solver.factor_nnz());
         assert!(amd.flops >= amd.factor_nnz as f64);

@@ -1,10 +1,6 @@
 //! The symbolic analysis of a Hessian pattern (the stored upper triangle, the fill-reducing
-//! ordering and faer's symbolic factorization), done once per pattern per process: the memory
-//! estimate before a solve, the solve itself, and later solves of the same network (stages,
-//! continuation phases, stability) all take it from [`analyse`]'s cache.
-
-use std::hash::Hasher;
-use std::sync::{Arc, Mutex};
+//! ordering and faer's symbolic factorization), made once per pattern and shared through an
+//! [`super::AnalysisCache`] by the memory estimate, the solve and later solves of the network.
 
 use faer::dyn_stack::{MemBuffer, MemStack};
 use faer::sparse::linalg::amd;
@@ -15,7 +11,8 @@ use faer::sparse::linalg::cholesky::{
 use faer::sparse::SymbolicSparseColMat;
 use faer::Side;
 
-use super::linalg::symbolic_params;
+use super::cache::Key;
+use super::cholesky::symbolic_params;
 use super::ordering::{choose, Ordering};
 
 /// A pattern's symbolic analysis, shared read-only by every factorization of that pattern.
@@ -32,7 +29,7 @@ pub struct Symbolic {
     pub ordering: Ordering,
     /// The ordering compared with it and not kept, if any (its structure is dropped).
     pub other: Option<Compared>,
-    key: Key,
+    pub(super) key: Key,
 }
 
 /// The pattern renumbered to the elimination order and stored on the side faer's numeric
@@ -98,103 +95,9 @@ impl Symbolic {
     }
 }
 
-/// What a cached analysis was made from: the pairs' hash (verified exactly by
-/// [`Symbolic::slots`] on a hit), their count, the dimension and the ordering asked for.
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-struct Key {
-    n: usize,
-    pairs: usize,
-    hash: u64,
-    ordering: Ordering,
-}
-
-/// Analyses kept: the networks of one job (a scene's stages, a study's levels) reuse the last
-/// few; older ones are dropped so that a sweep does not accumulate them.
-const CACHED: usize = 3;
-
-/// The analyses of the last patterns, most recently used last.
-#[derive(Default)]
-struct Cache(Vec<Arc<Symbolic>>);
-
-static CACHE: Mutex<Cache> = Mutex::new(Cache(Vec::new()));
-
-/// The analysis of the pattern `pairs` (upper-triangle pairs, duplicates allowed, every
-/// diagonal entry present) of an `n`-unknown problem with `ordering`, from the process's cache
-/// or made now (`positions`, asked only then, place the unknowns for the nested dissection),
-/// with each pair's slot. `None` where the symbolic analysis fails (index overflow).
-pub fn analyse(
-    n: usize,
-    pairs: &[(usize, usize)],
-    ordering: Ordering,
-    positions: impl FnOnce() -> Option<Vec<[f64; 3]>>,
-) -> Option<(Arc<Symbolic>, Vec<usize>)> {
-    let (s, slots) = find_or_make(n, pairs, ordering, positions)?;
-    let slots = slots.unwrap_or_else(|| s.slots(pairs).expect("the pattern holds its own pairs"));
-    Some((s, slots))
-}
-
-/// [`analyse`] without the slots (the memory estimate): a new analysis skips them.
-pub fn analyse_pattern(
-    n: usize,
-    pairs: &[(usize, usize)],
-    ordering: Ordering,
-    positions: impl FnOnce() -> Option<Vec<[f64; 3]>>,
-) -> Option<Arc<Symbolic>> {
-    find_or_make(n, pairs, ordering, positions).map(|(s, _)| s)
-}
-
-/// The cached analysis of `pairs` with their slots (the check that it is theirs), or a new one
-/// without.
-fn find_or_make(
-    n: usize,
-    pairs: &[(usize, usize)],
-    ordering: Ordering,
-    positions: impl FnOnce() -> Option<Vec<[f64; 3]>>,
-) -> Option<(Arc<Symbolic>, Option<Vec<usize>>)> {
-    let key = Key {
-        n,
-        pairs: pairs.len(),
-        hash: hash_pairs(pairs),
-        ordering,
-    };
-    let cached = CACHE.lock().unwrap_or_else(|e| e.into_inner()).take(key);
-    if let Some(s) = cached {
-        if let Some(slots) = s.slots(pairs) {
-            CACHE
-                .lock()
-                .unwrap_or_else(|e| e.into_inner())
-                .put(s.clone());
-            return Some((s, Some(slots)));
-        }
-    }
-    let s = Arc::new(analyse_uncached(n, pairs, ordering, positions, key)?);
-    CACHE
-        .lock()
-        .unwrap_or_else(|e| e.into_inner())
-        .put(s.clone());
-    Some((s, None))
-}
-
-impl Cache {
-    /// Removes and returns the analysis made under `key`.
-    fn take(&mut self, key: Key) -> Option<Arc<Symbolic>> {
-        let at = self.0.iter().position(|s| s.key == key)?;
-        Some(self.0.remove(at))
-    }
-
-    /// Keeps `s` as the most recently used, dropping the least recently used beyond [`CACHED`].
-    fn put(&mut self, s: Arc<Symbolic>) {
-        self.0.retain(|c| c.key != s.key);
-        if self.0.len() >= CACHED {
-            self.0.remove(0);
-        }
-        self.0.push(s);
-    }
-}
-
 /// The analysis with a given elimination order (position k: the unknown eliminated k-th;
 /// `None`: AMD), not cached (tests, benchmarks, small auxiliary systems).
-pub fn with_order(
+pub(super) fn with_order(
     n: usize,
     pairs: &[(usize, usize)],
     elimination: Option<&[usize]>,
@@ -226,7 +129,7 @@ pub fn with_order(
     })
 }
 
-fn analyse_uncached(
+pub(super) fn analyse_uncached(
     n: usize,
     pairs: &[(usize, usize)],
     ordering: Ordering,
@@ -484,33 +387,10 @@ fn upper_pattern(n: usize, pairs: &[(usize, usize)]) -> (SymbolicSparseColMat<us
     (pattern, diag)
 }
 
-/// A fast hash of the pairs (FxHash's multiply-rotate), to find a cached analysis; a match is
-/// then checked pair by pair.
-fn hash_pairs(pairs: &[(usize, usize)]) -> u64 {
-    struct Fx(u64);
-    impl Hasher for Fx {
-        fn finish(&self) -> u64 {
-            self.0
-        }
-        fn write(&mut self, _: &[u8]) {
-            unreachable!("only u64 words are hashed")
-        }
-        fn write_u64(&mut self, w: u64) {
-            self.0 = (self.0.rotate_left(5) ^ w).wrapping_mul(0x51_7c_c1_b7_27_22_0a_95);
-        }
-    }
-    let mut h = Fx(0);
-    for &(r, c) in pairs {
-        h.write_u64(r as u64);
-        h.write_u64(c as u64);
-    }
-    h.finish()
-}
-
 #[cfg(test)]
 mod tests {
+    use super::super::ordering::{grid_graph, AUTO_FLOPS_RATIO};
     use super::*;
-    use crate::solver::ordering::AUTO_FLOPS_RATIO;
 
     /// Unknowns, pairs, pattern and a permutation.
     type ScrambledGrid = (
@@ -523,7 +403,7 @@ mod tests {
     /// An m × m grid's unknowns, pairs and pattern, and a scrambled permutation of them.
     fn scrambled_grid(m: usize) -> ScrambledGrid {
         let n = m * m;
-        let (pairs, _) = crate::solver::ordering::grid_graph(m);
+        let (pairs, _) = grid_graph(m);
         let (pattern, _) = upper_pattern(n, &pairs);
         let order = (0..n).map(|k| (7 * k + 3) % n).collect();
         (n, pairs, pattern, order)
@@ -598,7 +478,7 @@ mod tests {
     #[test]
     fn auto_keeps_the_dissection_only_for_a_large_saving_in_flops() {
         let m = 150;
-        let (pairs, pts) = crate::solver::ordering::grid_graph(m);
+        let (pairs, pts) = grid_graph(m);
         let (pattern, _) = upper_pattern(m * m, &pairs);
         let amd = amd_order(&pattern).unwrap();
         let amd_size = factor_size(&pattern, &amd).unwrap();
@@ -634,45 +514,5 @@ mod tests {
         assert_eq!(with(1.1 * AUTO_FLOPS_RATIO, f), (Ordering::Amd, true));
         let least = (pattern.row_idx().len() as f64).powi(2) / (m * m) as f64;
         assert_eq!(with(0.0, least / AUTO_FLOPS_RATIO), (Ordering::Amd, false));
-    }
-
-    /// The same pairs find the same analysis in the cache; pairs of another pattern would not
-    /// pass [`Symbolic::slots`], and the least recently used analysis is dropped.
-    #[test]
-    fn an_analysis_is_found_by_its_pairs_and_checked_on_reuse() {
-        let (pairs, _) = crate::solver::ordering::grid_graph(12);
-        let n = 144;
-        let key = Key {
-            n,
-            pairs: pairs.len(),
-            hash: hash_pairs(&pairs),
-            ordering: Ordering::Amd,
-        };
-        let a = Arc::new(analyse_uncached(n, &pairs, Ordering::Amd, || None, key).unwrap());
-        let mut cache = Cache::default();
-        cache.put(a.clone());
-        let b = cache.take(key).unwrap();
-        assert!(Arc::ptr_eq(&a, &b));
-        assert!(cache.take(key).is_none());
-        let slots = a.slots(&pairs).unwrap();
-        assert_eq!(slots.len(), pairs.len());
-        assert_eq!(a.hessian_nnz(), pairs.len());
-        let mut other = pairs.clone();
-        other.pop();
-        assert!(a.slots(&other).is_none(), "an entry in no pair");
-        other.push((0, 143));
-        assert!(a.slots(&other).is_none(), "a pair not in the pattern");
-        for k in 0..=CACHED {
-            cache.put(Arc::new(
-                with_order(n, &pairs, None)
-                    .map(|mut s| {
-                        s.key.hash = k as u64;
-                        s
-                    })
-                    .unwrap(),
-            ));
-        }
-        assert_eq!(cache.0.len(), CACHED);
-        assert!(cache.0.iter().all(|s| s.key.hash != 0));
     }
 }

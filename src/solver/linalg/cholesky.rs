@@ -31,7 +31,7 @@ pub fn symbolic_params() -> CholeskySymbolicParams<'static> {
 pub struct SparseCholesky {
     n: usize,
     /// The pattern's analysis, shared with every other factorization of the pattern.
-    symbolic: Arc<Symbolic>,
+    pub(super) symbolic: Arc<Symbolic>,
     /// Values of the upper triangle, in CSC order; callers fill them through slots.
     pub values: Vec<f64>,
     /// A + shift·W of the last factorization, in the permuted pattern faer reads.
@@ -48,6 +48,9 @@ pub struct SparseCholesky {
     /// The supernodes' division for a solve on two threads, if it pays.
     solve_split: Option<supernodal_solve::Split>,
     factored: bool,
+    /// Whether [`Self::solve`] uses faer's own solve on a supernodal factor too (see
+    /// [`faer_solve_asked`]).
+    faer_solve: bool,
     /// LDLᵀ factor values, its input in the permuted pattern, and scratch, allocated on first
     /// use (arc-length continuation).
     ldlt: Vec<f64>,
@@ -82,7 +85,7 @@ impl SparseCholesky {
     }
 
     /// The numeric objects of a factorization on an analysed pattern.
-    pub fn from_symbolic(symbolic: Arc<Symbolic>) -> SparseCholesky {
+    pub(super) fn from_symbolic(symbolic: Arc<Symbolic>) -> SparseCholesky {
         let par = Par::Seq;
         let sym = symbolic.cholesky();
         let factor_mem =
@@ -108,6 +111,7 @@ impl SparseCholesky {
             solve_scratch,
             solve_split,
             factored: false,
+            faer_solve: faer_solve_asked(),
             ldlt: Vec::new(),
             ldlt_input: Vec::new(),
             ldlt_mem: MemBuffer::new(faer::dyn_stack::StackReq::EMPTY),
@@ -126,7 +130,14 @@ impl SparseCholesky {
 
     /// Whether solves split the factor over two threads (`supernodal_solve::Split`).
     pub fn solves_in_parallel(&self) -> bool {
-        self.solve_split.is_some()
+        self.solve_split.is_some() && !self.faer_solve
+    }
+
+    /// Solves with faer's own routine (`true`) instead of the supernodal loops of
+    /// `supernodal_solve.rs`, which read faer's factor storage by its layout: the fallback
+    /// should a faer version store it otherwise. Default: `RODNET_FAER_SOLVE`.
+    pub fn use_faer_solve(&mut self, on: bool) {
+        self.faer_solve = on;
     }
 
     /// Column pointers of the stored upper triangle (CSC).
@@ -260,7 +271,9 @@ impl SparseCholesky {
     /// Solves (A + shift·I) x = rhs in place with the last successful factorization.
     pub fn solve(&mut self, rhs: &mut [f64]) {
         assert!(self.factored, "solve without a factorization");
-        if let SymbolicCholeskyRaw::Supernodal(sym) = self.symbolic.cholesky.raw() {
+        if let (SymbolicCholeskyRaw::Supernodal(sym), false) =
+            (self.symbolic.cholesky.raw(), self.faer_solve)
+        {
             let order = &self.symbolic.permuted.elimination;
             let b = &mut self.permuted_rhs;
             order
@@ -275,8 +288,8 @@ impl SparseCholesky {
         }
     }
 
-    /// [`Self::solve`] by faer's own routine (the simplicial factor; the supernodal one in
-    /// tests, as the reference of [`supernodal_solve`]).
+    /// [`Self::solve`] by faer's own routine (the simplicial factor; the supernodal one with
+    /// [`Self::use_faer_solve`], and in tests as the reference of [`supernodal_solve`]).
     fn solve_with_faer(&mut self, rhs: &mut [f64]) {
         let llt = LltRef::<usize, f64>::new(&self.symbolic.cholesky, &self.l);
         in_elimination_order(
@@ -292,6 +305,23 @@ impl SparseCholesky {
                 )
             },
         );
+    }
+
+    /// Splits supernodal solves over two threads whatever the factor's size (`on`), or never;
+    /// whether a split was found. For the tests of the split's arithmetic on small factors.
+    #[cfg(test)]
+    pub(super) fn force_split(&mut self, on: bool) -> bool {
+        let SymbolicCholeskyRaw::Supernodal(sym) = self.symbolic.cholesky.raw() else {
+            return false;
+        };
+        self.solve_split = if on {
+            supernodal_solve::Split::from_values(sym, 0)
+        } else {
+            None
+        };
+        self.solve_scratch =
+            supernodal_solve::Scratch::new(&self.symbolic.cholesky, self.solve_split.as_ref());
+        self.solve_split.is_some()
     }
 
     /// y = (A + shift·W) x with the matrix of the last factorization.
@@ -333,6 +363,13 @@ impl SparseCholesky {
             y[c] = own;
         }
     }
+}
+
+/// Whether the environment asks for faer's solve on supernodal factors
+/// (`RODNET_FAER_SOLVE` set and not `0`), read once per process.
+fn faer_solve_asked() -> bool {
+    static ASKED: std::sync::OnceLock<bool> = std::sync::OnceLock::new();
+    *ASKED.get_or_init(|| std::env::var_os("RODNET_FAER_SOLVE").is_some_and(|v| v != "0"))
 }
 
 /// Whether every value is finite, in one pass the compiler vectorizes (x·0 is NaN exactly for
@@ -476,6 +513,7 @@ mod tests {
         for (k, v) in vals.iter().enumerate() {
             s.values[slot[k]] += v;
         }
+        s.use_faer_solve(false);
         s.factor(0.0).unwrap();
         let b: Vec<f64> = (0..n).map(|i| (i as f64 * 0.37).sin()).collect();
         let (mut own, mut reference) = (b.clone(), b.clone());
