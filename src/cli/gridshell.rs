@@ -290,3 +290,23 @@ pub(super) fn run(a: HemisphereArgs) -> i32 {
         EXIT_NOT_CONVERGED
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use clap::Parser;
+
+    use super::*;
+
+    #[derive(Parser)]
+    struct Command {
+        #[command(flatten)]
+        args: HemisphereArgs,
+    }
+
+    /// The command's defaults are the job's (sweeps and Python start from the latter).
+    #[test]
+    fn the_commands_defaults_are_the_options_defaults() {
+        let c = Command::try_parse_from(["hemisphere"]).unwrap();
+        assert_eq!(c.args.options(), HemisphereOptions::default());
+    }
+}

@@ -111,5 +111,9 @@ mod tests {
         assert_eq!(name, "rods", "{msg}");
         let (name, _) = hemisphere(&opts(&[("json", Value::Str("x".into()))])).unwrap_err();
         assert_eq!(name, "json");
+        // A negative number is a value, not a command-line flag.
+        let (name, msg) = hemisphere(&opts(&[("tolerance", Value::Float(-1.0))])).unwrap_err();
+        assert_eq!(name, "tolerance", "{msg}");
+        assert!(msg.contains("must be positive"), "{msg}");
     }
 }
