@@ -1,5 +1,5 @@
-//! `rodnet gridshell hemisphere`: the options, their checks, and the job (footprint scene,
-//! form finding, report).
+//! `rodnet gridshell hemisphere`: the clap options (the job's options and their checks are
+//! `gridshell::options`'s), and the job (footprint scene, form finding, report).
 
 use std::path::{Path, PathBuf};
 
