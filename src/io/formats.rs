@@ -16,6 +16,9 @@ pub struct Solved<'a> {
     pub json: Option<&'a [u8]>,
 }
 
+/// A check of a file name, before anything is solved.
+pub type PathCheck = fn(&Path) -> Result<(), String>;
+
 /// One output format.
 pub struct Format {
     /// The option's name, as sweeps and clap know it.
@@ -33,7 +36,7 @@ pub struct Format {
     /// Whether it needs the equilibrium (only commands that keep it offer it).
     pub needs_equilibrium: bool,
     /// Refuses a file name before anything is solved (checked when the options are parsed).
-    pub check: Option<fn(&Path) -> Result<(), String>>,
+    pub check: Option<PathCheck>,
     /// The file's bytes.
     pub bytes: fn(&Path, &Solved) -> Result<Vec<u8>, String>,
 }
