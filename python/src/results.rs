@@ -190,23 +190,22 @@ impl Results {
 
     /// Writes the equilibrium as OBJ polylines (as `rodnet solve --obj`), atomically.
     fn write_obj(&self, path: PathBuf) -> PyResult<()> {
-        write(
-            &path,
-            rodnet::io::obj::to_obj(&self.solved.results).as_bytes(),
-        )
+        self.write_format("obj", &path)
     }
 
     /// Writes the equilibrium as VTK XML (as `rodnet solve --vtk`): `.vtp` PolyData or `.vtu`
     /// UnstructuredGrid (meshio reads the latter), atomically.
     fn write_vtk(&self, path: PathBuf) -> PyResult<()> {
-        let format = rodnet::io::vtk::Format::of(&path).map_err(PyValueError::new_err)?;
-        let r = &self.solved.results;
-        if !r.all_finite() {
+        let vtk = rodnet::io::formats::named("vtk").expect("vtk is a format");
+        if let Some(check) = vtk.check {
+            check(&path).map_err(PyValueError::new_err)?;
+        }
+        if !self.solved.results.all_finite() {
             return Err(PyValueError::new_err(
                 "the results hold non-finite values (the solve diverged); no VTK file written",
             ));
         }
-        write(&path, rodnet::io::vtk::to_vtk(r, format).as_bytes())
+        self.write_format("vtk", &path)
     }
 
     /// Results from the text `to_json()` wrote (what unpickling calls).
@@ -245,6 +244,21 @@ impl Results {
             r.energy.total,
             r.rods.len()
         )
+    }
+}
+
+impl Results {
+    /// Writes one of `rodnet::io::formats::FORMATS` (made from the results alone), as the
+    /// commands write it.
+    fn write_format(&self, name: &str, path: &std::path::Path) -> PyResult<()> {
+        let format = rodnet::io::formats::named(name).expect("a format");
+        let solved = rodnet::io::formats::Solved {
+            results: &self.solved.results,
+            equilibrium: None,
+            json: None,
+        };
+        let bytes = (format.bytes)(path, &solved).map_err(PyValueError::new_err)?;
+        write(path, &bytes)
     }
 }
 

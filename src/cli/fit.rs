@@ -5,16 +5,19 @@ use std::sync::Arc;
 
 use clap::Args;
 
-use super::gridshell::{parse_section, SectionRatio};
+use super::gridshell::joint_choice;
 use super::network::JointArg;
-use super::output::{bad, check_outputs_creating, diagnostic, given, vtk_bytes};
+use super::output::{bad, check_outputs_creating, diagnostic, given};
+use super::output::{GridshellFormats, ResultOutputs};
 use super::output::{EXIT_NOT_CONVERGED, EXIT_OK};
 use super::progress::{self, show_progress};
 use crate::gridshell::fit::footprint::{FitSpec, DEFAULT_MIN_ANGLE_DEG};
 use crate::gridshell::fit::job::{self, FitError};
 use crate::gridshell::fit::net::Layout;
-use crate::gridshell::footprint::{to_ron, JointChoice};
-use crate::io::{atomic, footprint as fab, obj};
+use crate::gridshell::footprint::to_ron;
+use crate::gridshell::options::{parse_section, SectionRatio};
+use crate::io::formats::Solved;
+use crate::io::{atomic, footprint as fab};
 use crate::scene::types::{Section, Solver};
 use crate::surface::Surface;
 
@@ -64,13 +67,8 @@ pub struct FitArgs {
     /// Write the footprint scene (RON) here.
     #[arg(long)]
     pub scene_out: Option<PathBuf>,
-    #[arg(long)]
-    pub json: Option<PathBuf>,
-    #[arg(long)]
-    pub obj: Option<PathBuf>,
-    /// Write the equilibrium as VTK XML here (.vtp or .vtu, as `rodnet solve --vtk`).
-    #[arg(long, value_name = "F.vtp", value_parser = super::output::vtk_path)]
-    pub vtk: Option<PathBuf>,
+    #[command(flatten)]
+    pub results: ResultOutputs<GridshellFormats>,
     /// Write the text report here.
     #[arg(long)]
     pub report: Option<PathBuf>,
@@ -127,12 +125,7 @@ fn spec_of(a: &FitArgs) -> Result<FitSpec, String> {
         },
         min_angle_deg: a.min_angle,
         subdivide: a.subdivide,
-        joint: match a.joint {
-            JointArg::Ball => JointChoice::Ball,
-            JointArg::Hinge => JointChoice::Hinge,
-            JointArg::Rigid => JointChoice::Rigid,
-            JointArg::Elastic => JointChoice::Elastic,
-        },
+        joint: joint_choice(a.joint),
         section,
         young_modulus: a.young_modulus,
         poisson_ratio: a.poisson_ratio,
@@ -145,16 +138,13 @@ fn spec_of(a: &FitArgs) -> Result<FitSpec, String> {
 }
 
 struct Outputs {
-    json: Option<PathBuf>,
-    obj: Option<PathBuf>,
+    results: ResultOutputs<GridshellFormats>,
     report: Option<PathBuf>,
     dir: Option<PathBuf>,
 }
 
 fn outputs(a: &FitArgs) -> Result<Outputs, String> {
-    let explicit = a.json.is_some()
-        || a.obj.is_some()
-        || a.vtk.is_some()
+    let explicit = a.results.any()
         || a.report.is_some()
         || a.scene_out.is_some()
         || a.footprint_csv.is_some()
@@ -175,16 +165,12 @@ fn outputs(a: &FitArgs) -> Result<Outputs, String> {
         .file_stem()
         .map_or("target".into(), |s| s.to_string_lossy().into_owned());
     let mut out = Outputs {
-        json: a.json.clone(),
-        obj: a.obj.clone(),
+        results: a.results.clone(),
         report: a.report.clone(),
         dir,
     };
     if let Some(d) = &out.dir {
-        out.json
-            .get_or_insert_with(|| d.join(format!("{stem}-gridshell.json")));
-        out.obj
-            .get_or_insert_with(|| d.join(format!("{stem}-gridshell.obj")));
+        out.results = out.results.or_defaults(d, &format!("{stem}-gridshell"));
         out.report
             .get_or_insert_with(|| d.join(format!("{stem}-gridshell.txt")));
     }
@@ -200,15 +186,13 @@ pub(super) fn run(a: FitArgs) -> i32 {
         Ok(o) => o,
         Err(e) => return bad(e),
     };
-    let list = given(&[
-        ("--scene-out", &a.scene_out),
-        ("--json", &out.json),
-        ("--obj", &out.obj),
-        ("--vtk", &a.vtk),
+    let mut list = given(&[("--scene-out", &a.scene_out)]);
+    list.extend(out.results.list());
+    list.extend(given(&[
         ("--report", &out.report),
         ("--footprint-csv", &a.footprint_csv),
         ("--footprint-svg", &a.footprint_svg),
-    ]);
+    ]));
     let creating = out.dir.as_deref().filter(|d| !d.is_dir());
     if let Err(e) = check_outputs_creating(&list, &[a.target.as_path()], creating) {
         return bad(e);
@@ -257,27 +241,28 @@ pub(super) fn run(a: FitArgs) -> i32 {
     }
     let summary = run.summary();
     let rods = run.footprint_rods();
+    let solved = Solved {
+        results: r,
+        equilibrium: None,
+        json: None,
+    };
+    let results = match out.results.files(&solved, Path::to_path_buf) {
+        Ok(f) => f,
+        Err(e) => return bad(e),
+    };
     let mut files: Vec<(PathBuf, Vec<u8>)> = Vec::new();
+    if let Some(p) = &a.scene_out {
+        files.push((p.clone(), scene_text(&run, &a.target).into_bytes()));
+    }
+    files.extend(results);
     let mut add = |p: &Option<PathBuf>, bytes: Vec<u8>| {
         if let Some(p) = p {
             files.push((p.clone(), bytes));
         }
     };
-    add(&a.scene_out, scene_text(&run, &a.target).into_bytes());
-    add(
-        &out.json,
-        serde_json::to_vec_pretty(r).expect("results serialize"),
-    );
-    add(&out.obj, obj::to_obj(r).into_bytes());
     add(&out.report, summary.clone().into_bytes());
     add(&a.footprint_csv, fab::cut_list_csv(&rods).into_bytes());
     add(&a.footprint_svg, fab::footprint_svg(&rods).into_bytes());
-    if let Some(p) = &a.vtk {
-        match vtk_bytes(p, r) {
-            Ok(b) => files.push((p.clone(), b)),
-            Err(e) => return bad(e),
-        }
-    }
     if let Err((p, e)) = atomic::write_all(&files) {
         return bad(format_args!("cannot write {}: {e}", p.display()));
     }

@@ -1,19 +1,23 @@
-//! `rodnet gridshell hemisphere`: the options, their checks, and the job (footprint scene,
-//! form finding, report).
+//! `rodnet gridshell hemisphere`: the clap options (the job's options and their checks are
+//! `gridshell::options`'s), and the job (footprint scene, form finding, report).
 
 use std::path::{Path, PathBuf};
 
 use clap::Args;
 
 use super::network::JointArg;
-use super::output::{atomic_write, bad, check_outputs_creating, diagnostic, given, vtk_bytes};
+use super::output::{atomic_write, bad, check_outputs_creating, diagnostic, given};
+use super::output::{GridshellFormats, ResultOutputs};
 use super::output::{EXIT_NOT_CONVERGED, EXIT_OK};
 use super::progress::{self, show_progress};
 use crate::gridshell::footprint::{self, HemisphereSpec, JointChoice};
 use crate::gridshell::formfind::{FormPath, DEFAULT_START_CAP};
 use crate::gridshell::job as gridshell_job;
-use crate::io::{atomic, obj};
-use crate::scene::types::{Scene, Section};
+use crate::gridshell::options::{parse_section, HemisphereOptions, SectionRatio};
+use crate::gridshell::options::{DEFAULT_RODS, DEFAULT_SUBDIVIDE};
+use crate::io::atomic;
+use crate::io::formats::Solved;
+use crate::scene::types::Scene;
 use crate::scene::{self, FieldError};
 
 /// `--path` of `rodnet gridshell hemisphere`.
@@ -22,18 +26,6 @@ pub enum PathArg {
     CapNets,
     Straight,
 }
-
-/// Default rods per family of the gridshell job.
-pub const DEFAULT_RODS: usize = 12;
-/// Default edges per segment between crossings of the gridshell job.
-pub const DEFAULT_SUBDIVIDE: usize = 4;
-/// Largest n accepted (the net generator is tested up to 200).
-pub const MAX_RODS: usize = 200;
-/// Range of --radius, m.
-pub const MIN_RADIUS: f64 = 1e-6;
-pub const MAX_RADIUS: f64 = 1e6;
-/// Largest --section dimension, in units of R.
-pub const MAX_SECTION_RATIO: f64 = 1.0;
 
 #[derive(Args, Debug)]
 pub struct HemisphereArgs {
@@ -80,15 +72,8 @@ pub struct HemisphereArgs {
     /// Write the footprint scene (RON) here; alone, without other outputs, nothing is solved.
     #[arg(long)]
     pub scene_out: Option<PathBuf>,
-    /// Write the results JSON here.
-    #[arg(long)]
-    pub json: Option<PathBuf>,
-    /// Write the equilibrium as OBJ polylines here.
-    #[arg(long)]
-    pub obj: Option<PathBuf>,
-    /// Write the equilibrium as VTK XML here (.vtp or .vtu, as `rodnet solve --vtk`).
-    #[arg(long, value_name = "F.vtp", value_parser = super::output::vtk_path)]
-    pub vtk: Option<PathBuf>,
+    #[command(flatten)]
+    pub results: ResultOutputs<GridshellFormats>,
     /// Write the text report here.
     #[arg(long)]
     pub report: Option<PathBuf>,
@@ -107,149 +92,47 @@ pub struct HemisphereArgs {
     pub limits: super::LimitArgs,
 }
 
-/// A cross-section with its dimensions in units of the sphere radius.
-#[derive(Debug, Clone, Copy, PartialEq)]
-pub struct SectionRatio(pub Section);
-
-impl SectionRatio {
-    fn dims(self) -> Vec<f64> {
-        match self.0 {
-            Section::Circle { radius } => vec![radius],
-            Section::Ellipse { a, b } => vec![a, b],
-            Section::Rectangle { width, height } => vec![width, height],
-        }
-    }
-
-    fn scaled(self, r: f64) -> Section {
-        match self.0 {
-            Section::Circle { radius } => Section::Circle { radius: radius * r },
-            Section::Ellipse { a, b } => Section::Ellipse { a: a * r, b: b * r },
-            Section::Rectangle { width, height } => Section::Rectangle {
-                width: width * r,
-                height: height * r,
+impl HemisphereArgs {
+    /// The job's options (checked by [`HemisphereOptions::spec`]).
+    pub fn options(&self) -> HemisphereOptions {
+        HemisphereOptions {
+            radius: self.radius,
+            rods: self.rods,
+            subdivide: self.subdivide,
+            joint: joint_choice(self.joint),
+            section: self.section,
+            young_modulus: self.young_modulus,
+            poisson_ratio: self.poisson_ratio,
+            load_steps: self.load_steps,
+            tolerance: self.tolerance,
+            start_cap: self.start_cap,
+            path: match self.path {
+                PathArg::CapNets => FormPath::CapNets,
+                PathArg::Straight => FormPath::Straight,
             },
+            modes: self.modes.map(|k| k as usize),
         }
     }
 }
 
-pub(super) fn parse_section(s: &str) -> Result<SectionRatio, String> {
-    let (kind, dims) = s
-        .split_once(':')
-        .ok_or_else(|| format!("expected circle:r, ellipse:a,b or rectangle:w,h, got {s:?}"))?;
-    let dims: Vec<f64> = dims
-        .split(',')
-        .map(|d| {
-            d.trim()
-                .parse::<f64>()
-                .ok()
-                .filter(|v| v.is_finite() && *v > 0.0)
-                .ok_or_else(|| format!("section dimension {d:?} is not a positive number"))
-        })
-        .collect::<Result<_, _>>()?;
-    let section = match (kind, dims.as_slice()) {
-        ("circle", &[radius]) => Section::Circle { radius },
-        ("ellipse", &[a, b]) => Section::Ellipse { a, b },
-        ("rectangle", &[width, height]) => Section::Rectangle { width, height },
-        _ => {
-            return Err(format!(
-                "expected circle:r, ellipse:a,b or rectangle:w,h, got {s:?}"
-            ))
-        }
-    };
-    Ok(SectionRatio(section))
-}
-
-/// Checks the numbers clap cannot check by type.
-pub fn hemisphere_spec(a: &HemisphereArgs) -> Result<HemisphereSpec, String> {
-    let positive = |x: f64| x.is_finite() && x > 0.0;
-    // Every length of the footprint is R times a ratio of order one; outside this range its
-    // squares and the section's rigidities (r⁴ E) leave the doubles, and the net's sizes with
-    // them (a non-finite length once asked for endless subdivisions).
-    if !(MIN_RADIUS..=MAX_RADIUS).contains(&a.radius) {
-        return Err(format!(
-            "--radius must lie in [{MIN_RADIUS:e}, {MAX_RADIUS:e}] m, got {:e}",
-            a.radius
-        ));
-    }
-    if !(1..=MAX_RODS).contains(&a.rods) {
-        return Err(format!("--rods must be in 1..={MAX_RODS}, got {}", a.rods));
-    }
-    if a.subdivide == 0 {
-        return Err("--subdivide must be at least 1".into());
-    }
-    let nodes = crate::gridshell::footprint::estimated_nodes(a.rods, a.subdivide);
-    if nodes > scene::validate::MAX_NODES {
-        return Err(format!(
-            "--rods {} --subdivide {} would give about {} nodes (1.5 n² K), above the limit \
-             of {}; reduce --subdivide",
-            a.rods,
-            a.subdivide,
-            nodes,
-            scene::validate::MAX_NODES
-        ));
-    }
-    if let Some(d) = a
-        .section
-        .dims()
-        .into_iter()
-        .find(|&d| d > MAX_SECTION_RATIO)
-    {
-        return Err(format!(
-            "--section dimensions are in units of R and must be at most {MAX_SECTION_RATIO} \
-             (a rod as thick as the sphere), got {d:e}"
-        ));
-    }
-    if !(positive(a.young_modulus) && a.young_modulus <= scene::validate::MAX_MAGNITUDE) {
-        return Err(format!(
-            "--young-modulus must be positive and finite (at most {:e} Pa), got {}",
-            scene::validate::MAX_MAGNITUDE,
-            a.young_modulus
-        ));
-    }
-    if !(a.poisson_ratio.is_finite() && a.poisson_ratio > -1.0 && a.poisson_ratio <= 0.5) {
-        return Err(format!(
-            "--poisson-ratio must lie in (-1, 0.5], got {}",
-            a.poisson_ratio
-        ));
-    }
-    if a.load_steps == 0 || a.load_steps > scene::validate::MAX_LOAD_STEPS {
-        return Err(format!(
-            "--load-steps must be in 1..={}",
-            scene::validate::MAX_LOAD_STEPS
-        ));
-    }
-    if let Some(t) = a.tolerance.filter(|t| !positive(*t)) {
-        return Err(format!("--tolerance must be positive, got {t}"));
-    }
-    if !(a.start_cap == 0.0 || (a.start_cap.is_finite() && a.start_cap >= 1.0)) {
-        return Err(format!(
-            "--start-cap must be 0 (flat start), 1 (the analytic net) or a finite ratio above 1, got {}",
-            a.start_cap
-        ));
-    }
-    let mut spec = HemisphereSpec::new(a.radius, a.rods, a.subdivide);
-    spec.path = match a.path {
-        PathArg::CapNets => FormPath::CapNets,
-        PathArg::Straight => FormPath::Straight,
-    };
-    spec.joint = match a.joint {
+/// The generator's joint of a `--joint`.
+pub(super) fn joint_choice(j: JointArg) -> JointChoice {
+    match j {
         JointArg::Ball => JointChoice::Ball,
         JointArg::Hinge => JointChoice::Hinge,
         JointArg::Rigid => JointChoice::Rigid,
         JointArg::Elastic => JointChoice::Elastic,
-    };
-    spec.section = a.section.scaled(a.radius);
-    spec.young_modulus = a.young_modulus;
-    spec.poisson_ratio = a.poisson_ratio;
-    spec.load_steps = a.load_steps;
-    spec.tolerance = a.tolerance;
-    Ok(spec)
+    }
+}
+
+/// Checks the numbers clap cannot check by type.
+pub fn hemisphere_spec(a: &HemisphereArgs) -> Result<HemisphereSpec, String> {
+    a.options().spec()
 }
 
 /// The result files of the job.
 struct Outputs {
-    json: Option<PathBuf>,
-    obj: Option<PathBuf>,
+    results: ResultOutputs<GridshellFormats>,
     report: Option<PathBuf>,
     /// Where the default names go (--out-dir, or the current directory when no output option
     /// is given); created, if need be, only once everything has been checked.
@@ -258,24 +141,17 @@ struct Outputs {
 
 impl Outputs {
     fn list<'a>(&'a self, a: &'a HemisphereArgs) -> Vec<(&'static str, &'a Path)> {
-        given(&[
-            ("--scene-out", &a.scene_out),
-            ("--json", &self.json),
-            ("--obj", &self.obj),
-            ("--vtk", &a.vtk),
-            ("--report", &self.report),
-        ])
+        let mut list = given(&[("--scene-out", &a.scene_out)]);
+        list.extend(self.results.list());
+        list.extend(given(&[("--report", &self.report)]));
+        list
     }
 }
 
 /// The files asked for, with the default names in --out-dir (or the current directory when no
 /// output option is given).
 fn outputs(a: &HemisphereArgs) -> Result<Outputs, String> {
-    let explicit = a.json.is_some()
-        || a.obj.is_some()
-        || a.report.is_some()
-        || a.scene_out.is_some()
-        || a.vtk.is_some();
+    let explicit = a.results.any() || a.report.is_some() || a.scene_out.is_some();
     let dir = match (&a.out_dir, explicit) {
         (Some(d), _) => Some(d.clone()),
         (None, false) => Some(PathBuf::from(".")),
@@ -290,14 +166,12 @@ fn outputs(a: &HemisphereArgs) -> Result<Outputs, String> {
         }
     }
     let mut out = Outputs {
-        json: a.json.clone(),
-        obj: a.obj.clone(),
+        results: a.results.clone(),
         report: a.report.clone(),
         dir,
     };
     if let Some(d) = &out.dir {
-        out.json.get_or_insert_with(|| d.join("hemisphere.json"));
-        out.obj.get_or_insert_with(|| d.join("hemisphere.obj"));
+        out.results = out.results.or_defaults(d, "hemisphere");
         out.report.get_or_insert_with(|| d.join("hemisphere.txt"));
     }
     Ok(out)
@@ -339,7 +213,7 @@ fn write_scene(spec: &HemisphereSpec, scene: &Scene, p: &Path) -> Result<(), Str
 }
 
 pub(super) fn run(a: HemisphereArgs) -> i32 {
-    let spec = match hemisphere_spec(&a) {
+    let spec = match a.options().spec() {
         Ok(s) => s,
         Err(e) => return bad(e),
     };
@@ -366,7 +240,7 @@ pub(super) fn run(a: HemisphereArgs) -> i32 {
             return bad(e);
         }
     }
-    if out.json.is_none() && out.obj.is_none() && out.report.is_none() && a.vtk.is_none() {
+    if !out.results.any() && out.report.is_none() {
         return EXIT_OK;
     }
 
@@ -392,19 +266,16 @@ pub(super) fn run(a: HemisphereArgs) -> i32 {
         return EXIT_NOT_CONVERGED;
     }
     let summary = run.summary();
-    let mut files: Vec<(PathBuf, Vec<u8>)> = Vec::new();
-    if let Some(p) = out.json {
-        files.push((p, run.to_json()));
-    }
-    if let Some(p) = out.obj {
-        files.push((p, obj::to_obj(r).into_bytes()));
-    }
-    if let Some(p) = &a.vtk {
-        match vtk_bytes(p, r) {
-            Ok(b) => files.push((p.clone(), b)),
-            Err(e) => return bad(e),
-        }
-    }
+    let json = run.to_json();
+    let solved = Solved {
+        results: r,
+        equilibrium: None,
+        json: Some(&json),
+    };
+    let mut files = match out.results.files(&solved, Path::to_path_buf) {
+        Ok(f) => f,
+        Err(e) => return bad(e),
+    };
     if let Some(p) = out.report {
         files.push((p, summary.clone().into_bytes()));
     }
@@ -417,5 +288,25 @@ pub(super) fn run(a: HemisphereArgs) -> i32 {
     } else {
         eprintln!("rodnet: form finding did not converge: {diagnostic}");
         EXIT_NOT_CONVERGED
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use clap::Parser;
+
+    use super::*;
+
+    #[derive(Parser)]
+    struct Command {
+        #[command(flatten)]
+        args: HemisphereArgs,
+    }
+
+    /// The command's defaults are the job's (sweeps and Python start from the latter).
+    #[test]
+    fn the_commands_defaults_are_the_options_defaults() {
+        let c = Command::try_parse_from(["hemisphere"]).unwrap();
+        assert_eq!(c.args.options(), HemisphereOptions::default());
     }
 }

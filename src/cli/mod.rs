@@ -19,11 +19,9 @@ use std::path::PathBuf;
 
 use clap::{Parser, Subcommand};
 
+pub use crate::gridshell::options::{SectionRatio, DEFAULT_RODS, DEFAULT_SUBDIVIDE, MAX_RODS};
 pub use buckle::BuckleArgs;
-pub use gridshell::{
-    hemisphere_spec, HemisphereArgs, PathArg, SectionRatio, DEFAULT_RODS, DEFAULT_SUBDIVIDE,
-    MAX_RODS,
-};
+pub use gridshell::{hemisphere_spec, HemisphereArgs, PathArg};
 pub use indent::IndentArgs;
 pub use limits::{parse_bytes, LimitArgs};
 pub use network::{JointArg, NetworkArgs};
@@ -53,24 +51,8 @@ pub enum Command {
         /// Scene file (RON).
         #[arg(required_unless_present = "network")]
         scene: Option<PathBuf>,
-        /// Write the results JSON here.
-        #[arg(long)]
-        json: Option<PathBuf>,
-        /// Write the equilibrium as OBJ polylines here.
-        #[arg(long)]
-        obj: Option<PathBuf>,
-        /// Write the equilibrium as VTK XML here: .vtp PolyData (ParaView) or .vtu
-        /// UnstructuredGrid (ParaView, meshio); one line cell per edge, per-node and per-edge
-        /// fields.
-        #[arg(long, value_name = "F.vtp", value_parser = output::vtk_path)]
-        vtk: Option<PathBuf>,
-        /// Write one CSV row per node here.
-        #[arg(long)]
-        csv: Option<PathBuf>,
-        /// Write one CSV row per edge here: its internal forces, von Mises stress and
-        /// utilization.
-        #[arg(long, value_name = "FILE.csv")]
-        forces_csv: Option<PathBuf>,
+        #[command(flatten)]
+        results: output::ResultOutputs<output::SolveFormats>,
         /// Eigen-analysis at the equilibrium: the lowest K eigenvalues (N/m) and whether the
         /// state is stable, as a "stability" block in the results JSON.
         #[arg(long, value_name = "K", value_parser = clap::value_parser!(u32).range(1..=200))]
@@ -145,11 +127,7 @@ pub fn run(cli: Cli) -> i32 {
     match cli.command {
         Command::Solve {
             scene,
-            json,
-            obj,
-            vtk,
-            csv,
-            forces_csv,
+            results,
             modes,
             modes_obj,
             initial,
@@ -163,11 +141,7 @@ pub fn run(cli: Cli) -> i32 {
             solve::run(
                 scene,
                 solve::Outputs {
-                    json,
-                    obj,
-                    vtk,
-                    csv,
-                    forces_csv,
+                    results,
                     modes: modes.map(|k| k as usize),
                     modes_obj,
                     initial,

@@ -1,9 +1,11 @@
 //! What the commands share about their outputs: exit codes, error messages on stderr, and the
 //! checks and atomic writes of output files.
 
+use std::marker::PhantomData;
 use std::path::{Path, PathBuf};
 
 use crate::io::atomic;
+use crate::io::formats::{Format, Solved, FORMATS};
 
 /// Exit codes of the contract.
 pub const EXIT_OK: i32 = 0;
@@ -98,19 +100,6 @@ fn identity(p: &Path) -> Option<PathBuf> {
     }
 }
 
-/// A `--vtk` file name: its extension picks the dataset (checked when the options are parsed).
-pub(super) fn vtk_path(s: &str) -> Result<PathBuf, String> {
-    let p = PathBuf::from(s);
-    crate::io::vtk::Format::of(&p)?;
-    Ok(p)
-}
-
-/// The VTK file of `r` for `p`, named .vtp or .vtu ([`vtk_path`]).
-pub(super) fn vtk_bytes(p: &Path, r: &crate::io::results::Results) -> Result<Vec<u8>, String> {
-    let format = crate::io::vtk::Format::of(p)?;
-    Ok(crate::io::vtk::to_vtk(r, format).into_bytes())
-}
-
 /// The output options that were given, as (flag, path), for [`check_outputs`].
 pub(super) fn given<'f, 'p>(
     options: &[(&'f str, &'p Option<PathBuf>)],
@@ -119,4 +108,132 @@ pub(super) fn given<'f, 'p>(
         .iter()
         .filter_map(|&(f, p)| p.as_deref().map(|p| (f, p)))
         .collect()
+}
+
+/// Which of the [`FORMATS`] a command offers, and with which help texts.
+pub trait Offer {
+    /// The gridshell commands keep no equilibrium, only its results.
+    const GRIDSHELL: bool;
+}
+
+/// `rodnet solve`'s outputs: every format.
+#[derive(Debug, Clone)]
+pub struct SolveFormats;
+impl Offer for SolveFormats {
+    const GRIDSHELL: bool = false;
+}
+
+/// The gridshell commands' outputs: the formats made from the results alone.
+#[derive(Debug, Clone)]
+pub struct GridshellFormats;
+impl Offer for GridshellFormats {
+    const GRIDSHELL: bool = true;
+}
+
+/// The result files asked for, one option per format of [`FORMATS`] that the command offers
+/// (`#[command(flatten)]`).
+#[derive(Debug, Clone)]
+pub struct ResultOutputs<K> {
+    paths: Vec<Option<PathBuf>>,
+    offer: PhantomData<K>,
+}
+
+impl<K: Offer> ResultOutputs<K> {
+    fn offered() -> impl Iterator<Item = (usize, &'static Format)> {
+        FORMATS
+            .iter()
+            .enumerate()
+            .filter(|(_, f)| !(K::GRIDSHELL && f.needs_equilibrium))
+    }
+
+    /// No outputs.
+    pub fn none() -> Self {
+        ResultOutputs {
+            paths: vec![None; FORMATS.len()],
+            offer: PhantomData,
+        }
+    }
+
+    /// Whether any was asked for.
+    pub fn any(&self) -> bool {
+        self.paths.iter().any(Option::is_some)
+    }
+
+    /// The outputs that were given, as (flag, path), for [`check_outputs`].
+    pub fn list(&self) -> Vec<(&'static str, &Path)> {
+        FORMATS
+            .iter()
+            .zip(&self.paths)
+            .filter_map(|(f, p)| p.as_deref().map(|p| (f.flag, p)))
+            .collect()
+    }
+
+    /// Puts the formats that have a default name where none was given: `dir/STEM.EXT`.
+    pub fn or_defaults(mut self, dir: &Path, stem: &str) -> Self {
+        for (f, p) in FORMATS.iter().zip(&mut self.paths) {
+            if let Some(ext) = f.default_ext {
+                p.get_or_insert_with(|| dir.join(format!("{stem}.{ext}")));
+            }
+        }
+        self
+    }
+
+    /// The files asked for, at `at(path)`, in the order of [`FORMATS`].
+    pub fn files(
+        &self,
+        solved: &Solved,
+        at: impl Fn(&Path) -> PathBuf,
+    ) -> Result<Vec<(PathBuf, Vec<u8>)>, String> {
+        let mut files = Vec::new();
+        for (f, p) in FORMATS.iter().zip(&self.paths) {
+            if let Some(p) = p {
+                files.push((at(p), (f.bytes)(p, solved)?));
+            }
+        }
+        Ok(files)
+    }
+}
+
+impl<K: Offer> clap::FromArgMatches for ResultOutputs<K> {
+    fn from_arg_matches(m: &clap::ArgMatches) -> Result<Self, clap::Error> {
+        let mut out = Self::none();
+        out.update_from_arg_matches(m)?;
+        Ok(out)
+    }
+
+    fn update_from_arg_matches(&mut self, m: &clap::ArgMatches) -> Result<(), clap::Error> {
+        for (i, f) in Self::offered() {
+            if let Some(p) = m.get_one::<PathBuf>(f.name) {
+                self.paths[i] = Some(p.clone());
+            }
+        }
+        Ok(())
+    }
+}
+
+impl<K: Offer> clap::Args for ResultOutputs<K> {
+    fn augment_args(cmd: clap::Command) -> clap::Command {
+        Self::offered().fold(cmd, |cmd, (_, f)| {
+            let help = match f.gridshell_help {
+                Some(h) if K::GRIDSHELL => h,
+                _ => f.help,
+            };
+            let arg = clap::Arg::new(f.name)
+                .long(&f.flag[2..])
+                .value_name(f.value_name)
+                .help(help)
+                .action(clap::ArgAction::Set);
+            cmd.arg(match f.check {
+                Some(check) => arg.value_parser(move |s: &str| {
+                    let p = PathBuf::from(s);
+                    check(&p).map(|()| p)
+                }),
+                None => arg.value_parser(clap::value_parser!(PathBuf)),
+            })
+        })
+    }
+
+    fn augment_args_for_update(cmd: clap::Command) -> clap::Command {
+        Self::augment_args(cmd)
+    }
 }

@@ -3,20 +3,18 @@
 use std::path::{Path, PathBuf};
 
 use super::network::{self, NetworkArgs};
-use super::output::{atomic_write, bad, check_outputs, diagnostic, given, vtk_bytes};
+use super::output::{atomic_write, bad, check_outputs, diagnostic, given};
+use super::output::{ResultOutputs, SolveFormats};
 use super::output::{EXIT_BAD_INPUT, EXIT_NOT_CONVERGED, EXIT_OK};
 use super::progress::{self, show_progress};
-use crate::io::{atomic, csv, obj};
+use crate::io::atomic;
+use crate::io::formats::Solved;
 use crate::pipeline as job;
 use crate::scene::{self, FieldError, Scene, SceneError};
 
 /// The result files asked for.
 pub(super) struct Outputs {
-    pub json: Option<PathBuf>,
-    pub obj: Option<PathBuf>,
-    pub vtk: Option<PathBuf>,
-    pub csv: Option<PathBuf>,
-    pub forces_csv: Option<PathBuf>,
+    pub results: ResultOutputs<SolveFormats>,
     /// The eigen-analysis asked for (`--modes K`) and where its mode shapes go.
     pub modes: Option<usize>,
     pub modes_obj: Option<PathBuf>,
@@ -30,43 +28,26 @@ pub(super) struct Outputs {
 
 impl Outputs {
     fn list(&self) -> Vec<(&'static str, &Path)> {
-        given(&[
-            ("--json", &self.json),
-            ("--obj", &self.obj),
-            ("--vtk", &self.vtk),
-            ("--csv", &self.csv),
-            ("--forces-csv", &self.forces_csv),
-            ("--modes-obj", &self.modes_obj),
-        ])
+        let mut list = self.results.list();
+        list.extend(given(&[("--modes-obj", &self.modes_obj)]));
+        list
     }
 
-    /// The results files of one solution: each of `--json`, `--obj`, `--vtk`, `--csv`,
-    /// `--forces-csv` given, at its path with `.STAGE` before the extension when `stage` is named.
+    /// The results files of one solution, each at its path with `.STAGE` before the extension
+    /// when `stage` is named.
     fn results_files(
         &self,
         sol: &job::Solution,
         stage: Option<&str>,
     ) -> Result<Vec<(PathBuf, Vec<u8>)>, String> {
-        let at = |p: &Path| stage.map_or_else(|| p.to_path_buf(), |s| stage_path(p, s));
-        let mut files = Vec::new();
-        if let Some(p) = &self.json {
-            let b = serde_json::to_vec_pretty(&sol.results)
-                .map_err(|e| format!("cannot encode the results as JSON: {e}"))?;
-            files.push((at(p), b));
-        }
-        if let Some(p) = &self.obj {
-            files.push((at(p), obj::to_obj(&sol.results).into_bytes()));
-        }
-        if let Some(p) = &self.vtk {
-            files.push((at(p), vtk_bytes(p, &sol.results)?));
-        }
-        if let Some(p) = &self.csv {
-            files.push((at(p), csv::to_csv(&sol.equilibrium).into_bytes()));
-        }
-        if let Some(p) = &self.forces_csv {
-            files.push((at(p), csv::to_forces_csv(&sol.equilibrium).into_bytes()));
-        }
-        Ok(files)
+        let solved = Solved {
+            results: &sol.results,
+            equilibrium: Some(&sol.equilibrium),
+            json: None,
+        };
+        self.results.files(&solved, |p| {
+            stage.map_or_else(|| p.to_path_buf(), |s| stage_path(p, s))
+        })
     }
 }
 

@@ -4,12 +4,13 @@ use std::path::{Path, PathBuf};
 
 use clap::{Args, Subcommand, ValueEnum};
 
-use super::gridshell::{hemisphere_spec, HemisphereArgs, PathArg, SectionRatio, DEFAULT_RODS};
+use super::gridshell::joint_choice;
 use super::network::JointArg;
 use super::output::{bad, check_outputs, given, EXIT_NOT_CONVERGED, EXIT_OK};
 use super::progress::{self, show_progress};
 use crate::gridshell::footprint::DEFAULT_SECTION_RATIO;
 use crate::gridshell::formfind::DEFAULT_START_CAP;
+use crate::gridshell::options::{HemisphereOptions, SectionRatio, DEFAULT_RODS};
 use crate::io::atomic;
 use crate::scene::{self, types::Section};
 use crate::study::convergence::{analyse, plan, Problem};
@@ -74,31 +75,17 @@ pub struct ConvergenceArgs {
 
 /// The gridshell problem, with the checks and defaults of `rodnet gridshell hemisphere`.
 fn hemisphere_problem(a: &ConvergenceArgs) -> Result<Problem, String> {
-    let h = HemisphereArgs {
-        radius: 1.0,
+    let h = HemisphereOptions {
         rods: a.rods.unwrap_or(DEFAULT_RODS),
         subdivide: a.subdivide.unwrap_or(DEFAULT_GRIDSHELL_SUBDIVIDE),
-        joint: a.joint.unwrap_or(JointArg::Ball),
+        joint: joint_choice(a.joint.unwrap_or(JointArg::Ball)),
         section: SectionRatio(Section::Circle {
             radius: DEFAULT_SECTION_RATIO,
         }),
-        young_modulus: 1e9,
-        poisson_ratio: 0.3,
-        load_steps: 1,
-        tolerance: None,
         start_cap: a.start_cap.unwrap_or(DEFAULT_START_CAP),
-        path: PathArg::CapNets,
-        scene_out: None,
-        json: None,
-        obj: None,
-        vtk: None,
-        report: None,
-        out_dir: None,
-        modes: None,
-        quiet: a.quiet,
-        limits: a.limits.clone(),
+        ..HemisphereOptions::default()
     };
-    let spec = hemisphere_spec(&h)?;
+    let spec = h.spec()?;
     Ok(Problem::Hemisphere {
         spec,
         start_cap: h.start_cap,

@@ -5,4 +5,5 @@ pub mod fit;
 pub mod footprint;
 pub mod formfind;
 pub mod job;
+pub mod options;
 pub mod report;

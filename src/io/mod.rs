@@ -3,6 +3,7 @@ pub mod atomic;
 pub mod csv;
 pub mod curve_plot;
 pub mod footprint;
+pub mod formats;
 pub mod indent;
 pub mod initial;
 pub mod obj;

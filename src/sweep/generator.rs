@@ -1,32 +1,11 @@
 //! The hemisphere gridshell generator as a sweep's base (and as Python's
 //! `rodnet.gridshell.hemisphere`): its options are those of `rodnet gridshell hemisphere`,
-//! parsed and checked by the same code, so that a sweep accepts exactly what the command does.
-
-use clap::{CommandFactory, Parser};
+//! parsed and checked by the same code (`gridshell::options`), so that a sweep accepts exactly
+//! what the command does.
 
 use super::value::{OrderedMap, Value};
-use crate::cli::{hemisphere_spec, HemisphereArgs};
 use crate::gridshell::footprint::HemisphereSpec;
-
-#[derive(Parser, Debug)]
-#[command(name = "hemisphere", no_binary_name = true)]
-struct Options {
-    #[command(flatten)]
-    args: HemisphereArgs,
-}
-
-/// Options that choose files or the process's behaviour, not the gridshell.
-const NOT_OPTIONS: &[&str] = &[
-    "scene_out",
-    "json",
-    "obj",
-    "vtk",
-    "report",
-    "out_dir",
-    "quiet",
-    "max_memory",
-    "time_limit",
-];
+use crate::gridshell::options::{HemisphereOptions, OPTIONS};
 
 /// A sweep-only shorthand: the radius of a circular section over R (`--section circle:r`).
 pub const SECTION_RATIO: &str = "section_ratio";
@@ -42,12 +21,7 @@ pub struct Hemisphere {
 
 /// The generator's option names, as a sweep writes them (`rods`, `young_modulus`, ...).
 pub fn option_names() -> Vec<String> {
-    let cmd = Options::command();
-    let mut names: Vec<String> = cmd
-        .get_arguments()
-        .map(|a| a.get_id().as_str().to_string())
-        .filter(|n| !NOT_OPTIONS.contains(&n.as_str()) && n != "help")
-        .collect();
+    let mut names: Vec<String> = OPTIONS.iter().map(|(n, _)| n.to_string()).collect();
     names.push(SECTION_RATIO.into());
     names
 }
@@ -55,7 +29,9 @@ pub fn option_names() -> Vec<String> {
 /// The hemisphere the options describe; an error names the option (`rods: ...`).
 pub fn hemisphere(options: &OrderedMap<Value>) -> Result<Hemisphere, (String, String)> {
     let known = option_names();
-    let mut argv: Vec<String> = Vec::new();
+    // (option set, its text, the parameter named in an error): all checked by name and kind
+    // before any is parsed, as the command line does.
+    let mut given: Vec<(&str, String, &String)> = Vec::new();
     if options.get(SECTION_RATIO).is_some() && options.get("section").is_some() {
         return Err((
             SECTION_RATIO.into(),
@@ -74,8 +50,7 @@ pub fn hemisphere(options: &OrderedMap<Value>) -> Result<Hemisphere, (String, St
         }
         match (name.as_str(), value) {
             (SECTION_RATIO, Value::Int(_) | Value::Float(_)) => {
-                argv.push("--section".into());
-                argv.push(format!("circle:{value}"));
+                given.push(("section", format!("circle:{value}"), name));
             }
             (SECTION_RATIO, _) => {
                 return Err((
@@ -86,30 +61,14 @@ pub fn hemisphere(options: &OrderedMap<Value>) -> Result<Hemisphere, (String, St
             (_, Value::Bool(_)) => {
                 return Err((name.clone(), format!("expected a value, got {value}")));
             }
-            _ => {
-                argv.push(format!("--{}", name.replace('_', "-")));
-                argv.push(value.to_string());
-            }
+            _ => given.push((name, value.to_string(), name)),
         }
     }
-    let parsed = Options::try_parse_from(&argv).map_err(|e| {
-        let text = e.render().to_string();
-        let first = text
-            .lines()
-            .next()
-            .unwrap_or("")
-            .trim_start_matches("error: ");
-        let name = options
-            .0
-            .iter()
-            .map(|(n, _)| n)
-            .find(|n| first.contains(&format!("--{}", n.replace('_', "-"))))
-            .cloned()
-            .unwrap_or_default();
-        (name, first.to_string())
-    })?;
-    let a = parsed.args;
-    let spec = hemisphere_spec(&a).map_err(|msg| {
+    let mut h = HemisphereOptions::default();
+    for (option, text, name) in given {
+        h.set(option, &text).map_err(|m| (name.clone(), m))?;
+    }
+    let spec = h.spec().map_err(|msg| {
         // The message starts with the flag it is about.
         let name = msg
             .strip_prefix("--")
@@ -120,8 +79,8 @@ pub fn hemisphere(options: &OrderedMap<Value>) -> Result<Hemisphere, (String, St
     })?;
     Ok(Hemisphere {
         spec,
-        start_cap: a.start_cap,
-        modes: a.modes.map(|k| k as usize),
+        start_cap: h.start_cap,
+        modes: h.modes,
     })
 }
 
@@ -152,5 +111,9 @@ mod tests {
         assert_eq!(name, "rods", "{msg}");
         let (name, _) = hemisphere(&opts(&[("json", Value::Str("x".into()))])).unwrap_err();
         assert_eq!(name, "json");
+        // A negative number is a value, not a command-line flag.
+        let (name, msg) = hemisphere(&opts(&[("tolerance", Value::Float(-1.0))])).unwrap_err();
+        assert_eq!(name, "tolerance", "{msg}");
+        assert!(msg.contains("must be positive"), "{msg}");
     }
 }
