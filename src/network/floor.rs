@@ -10,7 +10,7 @@ use super::Network;
 use crate::scene::types::{Scene, SupportKind};
 use crate::scene::FieldError;
 use crate::solver::verdict::MEANINGFUL_FLOOR;
-use crate::solver::NewtonProblem;
+use crate::solver::problem::Core;
 
 /// A start floor this many times above `MEANINGFUL_FLOOR` is refused: the floor at the
 /// equilibrium differs from the start's by the change of the coordinates' magnitudes (measured
