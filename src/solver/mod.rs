@@ -15,6 +15,7 @@ mod regularize;
 pub mod saddle;
 pub mod settings;
 pub mod spectrum;
+mod stationary;
 mod step;
 mod supernodal_solve;
 pub mod symbolic;

@@ -20,13 +20,13 @@ use super::linalg::SparseCholesky;
 use super::line_search::{Search, SecondCurve};
 use super::problem::{Core, NewtonProblem};
 use super::qp::StepQp;
-use super::regularize::Saddle;
 use super::settings::{NewtonReport, NewtonSettings};
+use super::stationary::settled;
 use super::step::{repair_lengths, Second};
 
 /// Relative residual below which a full Newton step on a positive definite Hessian may be
 /// accepted for reducing the residual when the Armijo test cannot resolve the energy change.
-const TRUSTED_RESIDUAL: f64 = 1e-4;
+pub(super) const TRUSTED_RESIDUAL: f64 = 1e-4;
 /// A full, unshifted Newton step at most this large in the unknowns' scales (edge lengths,
 /// radians) moves nothing that matters: below the round-off floor, Newton takes it without a
 /// line search and stops instead of assembling once more to see round-off stall the residual
@@ -52,12 +52,6 @@ const ENERGY_CONVERGED: f64 = 1e-2;
 /// carries more than half the step's curvature: far in an indefinite region, a smaller
 /// increment is cheaper.
 const INDEFINITE_STEPS: usize = 3;
-
-/// Why a stationary point is not called stable although no saddle escape left it.
-const UNDECIDED: &str = "stability not decided: the energy's Hessian has negative curvature \
-    that the dead moments' non-symmetric stiffness may remove (a dead moment is not \
-    conservative for 3-D rotations; the state is an equilibrium, and the energy cannot judge \
-    its stability)";
 
 /// How Newton iterations at one continuation parameter ended.
 pub(super) enum Outcome {
@@ -300,50 +294,6 @@ impl Newton {
         t.floor.unwrap_or(0.0)
     }
 
-    /// The verdict at a stationary point (converged, or stalled below the floor): stable on an
-    /// unshifted factor, else leave a saddle (Ok: iterate on) or judge its zero modes.
-    fn at_stationary<P: NewtonProblem>(
-        &mut self,
-        p: &mut P,
-        lim: &Limits,
-        (e0, res, qp_shift): (f64, f64, Option<f64>),
-        escapes: &mut usize,
-    ) -> Result<(), Outcome> {
-        let Some(shift) = qp_shift.or_else(|| self.factor_regularized()) else {
-            return Err(Outcome::Failed(format!(
-                "Hessian could not be regularized (residual {res:.3e})"
-            )));
-        };
-        if shift == 0.0 {
-            if lim.judge_stability {
-                self.report.stable = self.stable_unshifted(p);
-            }
-            return Err(settled(res, lim));
-        }
-        match self.escape_saddle(p, e0) {
-            Saddle::ZeroModesOnly => {
-                if lim.judge_stability {
-                    self.report.stable = self.gauge_modes_only(p);
-                }
-                Err(settled(res, lim))
-            }
-            Saddle::Escaped if *escapes < 8 => {
-                *escapes += 1;
-                self.report.saddle_escapes += 1;
-                Ok(())
-            }
-            Saddle::Undecided => {
-                self.report.stable = false;
-                self.report.stability_note = Some(UNDECIDED.into());
-                Err(settled(res, lim))
-            }
-            _ => {
-                self.report.stable = false;
-                Err(settled(res, lim))
-            }
-        }
-    }
-
     /// The iteration cap and the deadline. Ok(at_cap): the cap is reached above the floor but
     /// the attempt may go on if it is converging (`converging`).
     fn check_limits(
@@ -448,16 +398,6 @@ impl Newton {
         Ok(small_step)
     }
 
-    /// Whether the equilibrium whose unshifted Hessian is factored is stable: a singular
-    /// Hessian can factor behind a round-off pivot, so near-singular factors are checked for
-    /// modes other than the gauges.
-    fn stable_unshifted<P: NewtonProblem>(&mut self, p: &mut P) -> bool {
-        let gauges = p.gauge_modes();
-        let singular = self.near_singular(&gauges);
-        self.report.zero_modes = 0;
-        !singular || self.gauge_modes_only(p)
-    }
-
     /// Whether the current step is Newton's own on the unshifted Hessian, without constraint
     /// forces: its quadratic model holds, and the energy's gradient is the residual.
     pub(super) fn on_newton_model(&self, shift: f64) -> bool {
@@ -551,71 +491,6 @@ impl Newton {
         )?;
         p.accept(&self.trial, 1.0);
         Some(alpha)
-    }
-
-    /// When no step length passes: energy differences below round-off, or a saddle. Err ends
-    /// the iterations with that outcome. `corrected`: `c` holds the step's first correction,
-    /// left there by the failed search.
-    fn after_failed_search<P: NewtonProblem>(
-        &mut self,
-        p: &mut P,
-        (e0, shift, res, floor, corrected): (f64, f64, f64, f64, bool),
-        judge: bool,
-        escapes: &mut usize,
-    ) -> Result<(), Outcome> {
-        // Judge the full step by its residual.
-        let n = self.d.len();
-        for i in 0..n {
-            self.trial[i] = self.d[i] + if corrected { self.c[i] } else { 0.0 };
-        }
-        p.trial_gradient(&self.trial, 1.0, &mut self.g_trial);
-        let res_trial = p.relative_residual(&self.g_trial);
-        // Only where the Hessian is positive definite (a convex model: reducing the residual
-        // approaches a minimum, not a saddle) and the residual is small. (With constraint forces
-        // the plain gradient is no residual: never trusted.)
-        let trusted = self.on_newton_model(shift) && res < TRUSTED_RESIDUAL;
-        let failed =
-            || Outcome::Failed(format!("line search failed (relative residual {res:.3e})"));
-        if trusted && res_trial < 0.9 * res && p.max_step(&self.trial) >= 1.0 {
-            p.accept(&self.trial, 1.0);
-            Ok(())
-        } else if shift > 0.0 && *escapes < 8 {
-            // No descent along the regularized Newton step near a stationary point of an
-            // indefinite Hessian: leave along negative curvature instead.
-            match self.escape_saddle(p, e0) {
-                Saddle::Escaped => {
-                    *escapes += 1;
-                    self.report.saddle_escapes += 1;
-                    Ok(())
-                }
-                Saddle::ZeroModesOnly if res < floor => {
-                    if judge {
-                        self.report.stable = self.gauge_modes_only(p);
-                    }
-                    Err(Outcome::AtFloor)
-                }
-                _ if res < floor => {
-                    self.report.stable = false;
-                    Err(Outcome::AtFloor)
-                }
-                _ => Err(failed()),
-            }
-        } else if res < floor {
-            // Round-off stalled Newton below the floor.
-            self.report.stable = shift == 0.0;
-            Err(Outcome::AtFloor)
-        } else {
-            Err(failed())
-        }
-    }
-}
-
-/// The outcome at a stationary point with residual `res`: converged, or at the round-off floor.
-fn settled(res: f64, lim: &Limits) -> Outcome {
-    if res < lim.tolerance {
-        Outcome::Converged
-    } else {
-        Outcome::AtFloor
     }
 }
 
