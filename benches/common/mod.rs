@@ -5,7 +5,7 @@ use rodnet::network::assembly::{Assembly, HessianOut, HessianSlots};
 use rodnet::network::model::Model;
 use rodnet::network::NetworkProblem;
 use rodnet::solver::linalg::SparseCholesky;
-use rodnet::solver::NewtonProblem;
+use rodnet::solver::problem::{LengthRepair, Steps};
 
 /// Assembles `m`'s gradient into `g` and its Hessian into `chol`'s values through the slot map
 /// `hs`; returns the energy.

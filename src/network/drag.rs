@@ -15,7 +15,8 @@ use crate::network::assembly::Assembly;
 use crate::network::model::Prescribed;
 use crate::network::problem::NetworkProblem;
 use crate::network::Network;
-use crate::solver::{NewtonProblem, NewtonSettings};
+use crate::solver::problem::ContinuationPath;
+use crate::solver::NewtonSettings;
 use crate::variables::{State, FIXED};
 
 /// Steps of the displacement-controlled path between two states.

@@ -9,8 +9,8 @@ use super::problem::NetworkProblem;
 use super::Network;
 use crate::scene::types::{Scene, SupportKind};
 use crate::scene::FieldError;
+use crate::solver::problem::Core;
 use crate::solver::verdict::MEANINGFUL_FLOOR;
-use crate::solver::NewtonProblem;
 
 /// A start floor this many times above `MEANINGFUL_FLOOR` is refused: the floor at the
 /// equilibrium differs from the start's by the change of the coordinates' magnitudes (measured

@@ -12,8 +12,9 @@ use crate::network::problem::NetworkProblem;
 use crate::network::Network;
 use crate::scene::types::{Scene, Support, SupportKind};
 use crate::solver::path_events::{EventKind, PathEvent};
+use crate::solver::problem::ContinuationPath;
 use crate::solver::spectrum;
-use crate::solver::{NewtonProblem, NewtonSettings, Ordering};
+use crate::solver::{NewtonSettings, Ordering};
 
 /// Where and how far to push.
 #[derive(Debug, Clone)]

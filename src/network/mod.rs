@@ -4,7 +4,6 @@
 
 pub mod active_set;
 pub mod assembly;
-pub mod buckle;
 pub mod budget;
 pub mod build;
 pub mod contact;
@@ -28,12 +27,13 @@ pub mod scratch;
 pub mod stability;
 pub mod stage;
 pub mod states;
+pub mod symmetry_break;
 
-pub use buckle::solve as solve_toward;
 pub use build::build;
 pub use info::{Gauge, JointInfo, RodInfo, SupportInfo};
 pub use model::Model;
 pub use problem::{solve, NetworkProblem};
+pub use symmetry_break::solve_toward;
 
 /// A built network: the Newton model plus what the results need to name things.
 #[derive(Debug, Clone)]

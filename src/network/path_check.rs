@@ -8,8 +8,9 @@ use super::problem::NetworkProblem;
 use super::stability::mean_edge;
 use super::Network;
 use crate::solver::path_events::EventKind;
+use crate::solver::problem::{ContinuationPath, Snapshots};
 use crate::solver::spectrum;
-use crate::solver::{NewtonProblem, NewtonSettings, Ordering};
+use crate::solver::{NewtonSettings, Ordering};
 
 /// What the path check found.
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]

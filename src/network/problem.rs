@@ -1,5 +1,5 @@
-//! The network as a [`NewtonProblem`]: a thin adapter that lends the solver a [`Model`] for one
-//! or several solves and keeps what those solves cache (the Hessian slot map, the length
+//! The network as a [`NewtonProblem`](crate::solver::NewtonProblem), role by role: a thin
+//! adapter that lends the solver a [`Model`] for one or several solves and keeps what those solves cache (the Hessian slot map, the length
 //! projector) and the scratch copy used by trial evaluations.
 
 use crate::network::assembly::{Assembly, HessianOut, HessianSlots};
@@ -7,7 +7,11 @@ use crate::network::model::Model;
 use crate::network::projection::Projector;
 use crate::network::{Network, RodInfo};
 use crate::solver::linalg::SparseCholesky;
-use crate::solver::{NewtonProblem, NewtonReport, NewtonSettings, Ordering};
+use crate::solver::problem::{
+    Constraints, ContinuationPath, Core, Gauge, HessianPattern, LengthRepair, Mechanisms,
+    NonConservative, Scales, Snapshots, Steps, SymmetryBreak,
+};
+use crate::solver::{NewtonReport, NewtonSettings, Ordering};
 use crate::variables::{State, VarKind};
 
 /// Most Gauss–Newton passes of the length projection after a secant prediction on a buckling
@@ -36,7 +40,7 @@ pub struct NetworkProblem<'m> {
     /// Scratch of `residual_floor`: the rounding noise and the gradient it causes.
     floor_scratch: (Vec<f64>, Vec<f64>),
     /// A temporary dead force on the free unknowns (energy −b·q), empty for none: the bias of
-    /// `buckle_toward` (`network/buckle.rs`).
+    /// `buckle_toward` (`network/symmetry_break.rs`).
     bias: Vec<f64>,
     /// The side a symmetric state should be left toward, for the saddle escape's sign.
     toward: Option<[f64; 3]>,
@@ -78,7 +82,7 @@ impl<'m> NetworkProblem<'m> {
     }
 
     /// The relative residual that rounding the free unknowns causes at the current state,
-    /// whose gradient is `grad` (`NewtonProblem::residual_floor`; `by_node`: see
+    /// whose gradient is `grad` (`Core::residual_floor`; `by_node`: see
     /// `Model::rounding_noise`).
     pub fn rounding_response(&mut self, grad: &[f64], by_node: bool) -> f64 {
         // Measured, not estimated from stiffnesses: the residual that rounding every free
@@ -235,7 +239,85 @@ impl NetworkProblem<'_> {
     }
 }
 
-impl NewtonProblem for NetworkProblem<'_> {
+impl Core for NetworkProblem<'_> {
+    fn num_free(&self) -> usize {
+        self.model.n_free
+    }
+    fn assemble(&self, grad: &mut [f64], hess: Option<&mut [f64]>) -> f64 {
+        let e = self.model.assemble(&mut Assembly {
+            grad,
+            full_grad: None,
+            hess: hess.map(|values| HessianOut {
+                values,
+                slots: &self.slots,
+            }),
+        });
+        subtract(grad, &self.bias);
+        e + bias_energy(self.model, &self.bias)
+    }
+    fn energy(&self) -> f64 {
+        self.model.energy() + bias_energy(self.model, &self.bias)
+    }
+    fn relative_residual(&self, grad: &[f64]) -> f64 {
+        self.model.relative_residual(grad)
+    }
+    fn residual_floor(&mut self, grad: &[f64]) -> f64 {
+        self.rounding_response(grad, false)
+    }
+}
+
+impl HessianPattern for NetworkProblem<'_> {
+    fn hessian_pattern(&self) -> Vec<(usize, usize)> {
+        self.model.hessian_pattern()
+    }
+    fn set_hessian_slots(&mut self, slots: &[usize]) {
+        self.slots = self.model.hessian_slots(slots);
+    }
+    fn unknown_positions(&self) -> Option<Vec<[f64; 3]>> {
+        Some(self.model.unknown_positions())
+    }
+}
+
+impl Scales for NetworkProblem<'_> {
+    fn perturbation_size(&self, direction: &[f64]) -> f64 {
+        self.model.perturbation_size(direction)
+    }
+    fn unknown_scales(&self, scales: &mut [f64]) {
+        self.model.unknown_scales(scales)
+    }
+}
+
+impl Steps for NetworkProblem<'_> {
+    fn trial_energy(&mut self, step: &[f64], alpha: f64) -> f64 {
+        let b = std::mem::take(&mut self.bias);
+        let e = self.displaced(step, alpha, |m| m.energy() + bias_energy(m, &b));
+        self.bias = b;
+        e
+    }
+    fn trial_gradient(&mut self, step: &[f64], alpha: f64, grad: &mut [f64]) -> f64 {
+        let b = std::mem::take(&mut self.bias);
+        let e = self.displaced(step, alpha, |m| {
+            let e = m.assemble(&mut Assembly {
+                grad,
+                full_grad: None,
+                hess: None,
+            });
+            e + bias_energy(m, &b)
+        });
+        subtract(grad, &b);
+        self.bias = b;
+        e
+    }
+    fn max_step(&self, step: &[f64]) -> f64 {
+        self.model.max_step(step)
+    }
+    fn accept(&mut self, step: &[f64], alpha: f64) {
+        self.model.displace(step, alpha);
+        self.model.commit();
+    }
+}
+
+impl Snapshots for NetworkProblem<'_> {
     type Snapshot = State;
     fn snapshot(&self) -> State {
         self.model.state.clone()
@@ -259,6 +341,19 @@ impl NewtonProblem for NetworkProblem<'_> {
         }
         m.rollers.snap(&mut m.state.q, m.state.load_factor);
         m.commit();
+    }
+}
+
+impl ContinuationPath for NetworkProblem<'_> {
+    fn set_continuation(&mut self, lambda: f64) {
+        let (a, b) = self.load_range;
+        self.lambda = lambda;
+        self.model.set_load(a + lambda * (b - a));
+        // Prescribed variables moved: reference frames must follow before the next assembly.
+        self.model.commit();
+    }
+    fn continuation_is_trivial(&self) -> bool {
+        self.model.continuation_is_trivial()
     }
     fn predict(&mut self, from: &[(&State, f64)], lambda: f64) {
         if !self.projects_predictions() {
@@ -289,105 +384,19 @@ impl NewtonProblem for NetworkProblem<'_> {
             self.project_lengths(&lengths);
         }
     }
-    fn residual_floor(&mut self, grad: &[f64]) -> f64 {
-        self.rounding_response(grad, false)
-    }
-    fn num_free(&self) -> usize {
-        self.model.n_free
-    }
-    fn hessian_pattern(&self) -> Vec<(usize, usize)> {
-        self.model.hessian_pattern()
-    }
-    fn set_hessian_slots(&mut self, slots: &[usize]) {
-        self.slots = self.model.hessian_slots(slots);
-    }
-    fn assemble(&self, grad: &mut [f64], hess: Option<&mut [f64]>) -> f64 {
-        let e = self.model.assemble(&mut Assembly {
-            grad,
-            full_grad: None,
-            hess: hess.map(|values| HessianOut {
-                values,
-                slots: &self.slots,
-            }),
-        });
-        subtract(grad, &self.bias);
-        e + bias_energy(self.model, &self.bias)
-    }
-    fn energy(&self) -> f64 {
-        self.model.energy() + bias_energy(self.model, &self.bias)
-    }
-    fn trial_energy(&mut self, step: &[f64], alpha: f64) -> f64 {
-        let b = std::mem::take(&mut self.bias);
-        let e = self.displaced(step, alpha, |m| m.energy() + bias_energy(m, &b));
-        self.bias = b;
-        e
-    }
-    fn trial_gradient(&mut self, step: &[f64], alpha: f64, grad: &mut [f64]) -> f64 {
-        let b = std::mem::take(&mut self.bias);
-        let e = self.displaced(step, alpha, |m| {
-            let e = m.assemble(&mut Assembly {
-                grad,
-                full_grad: None,
-                hess: None,
-            });
-            e + bias_energy(m, &b)
-        });
-        subtract(grad, &b);
-        self.bias = b;
-        e
-    }
-    fn mechanism(&mut self, modes: &[Vec<f64>]) -> Option<String> {
-        // The load vector: the rate at which the load factor changes the gradient at the
-        // current state (dead loads, and the pull of prescribed motions on the free unknowns),
-        // measured over a small increment towards λ = 1. Jumping to λ = 1 moved a prescribed
-        // end past its neighbours (a slack wire's pin moved by 5 edges): the reversed edges'
-        // frames were committed as NaN and poisoned every later attempt. The state is restored
-        // from a snapshot, not by setting λ back (which commits the frames once more).
-        let saved = self.model.state.clone();
-        let lam = self.lambda;
-        let probe = lam + MECHANISM_PROBE * (1.0 - lam);
-        let n = self.model.n_free;
-        let (mut g0, mut g1) = (vec![0.0; n], vec![0.0; n]);
-        self.assemble(&mut g0, None);
-        self.set_continuation(probe);
-        self.assemble(&mut g1, None);
-        self.model.state.clone_from(&saved);
-        self.lambda = lam;
-        g1.iter_mut().zip(&g0).for_each(|(a, b)| *a -= b);
-        crate::network::mechanism::describe(self.model, self.rods, self.gauge_node, modes, &g1)
-    }
-    fn gauge_modes(&mut self) -> Vec<Vec<f64>> {
-        crate::network::mechanism::gauge_modes(self.model, self.gauge_node)
-    }
-    fn gauge_turns(&mut self) -> Option<crate::solver::problem::TurnPaths> {
-        crate::network::mechanism::turn_paths(self.model, self.gauge_node)
-    }
-    fn gauge_only(&mut self, modes: &[Vec<f64>]) -> bool {
-        crate::network::mechanism::gauge_only(self.model, self.gauge_node, modes)
-    }
-    fn deforms(&mut self, mode: &[f64]) -> bool {
-        crate::network::mechanism::deforms(self.model, self.rods, mode)
-    }
-    fn zero_stiffness(&mut self) -> f64 {
-        crate::network::stability::zero_stiffness(self.model, self.rods)
-    }
-    fn orientation(&self, direction: &[f64]) -> f64 {
-        let Some(t) = self.toward else { return 0.0 };
+}
+
+impl LengthRepair for NetworkProblem<'_> {
+    fn step_correction(&mut self, step: &[f64], c: &mut [f64]) -> bool {
         let m = &*self.model;
-        (0..m.layout.n_nodes())
-            .map(|n| {
-                (0..3)
-                    .map(|k| {
-                        m.unknowns()
-                            .of_node(n, k)
-                            .map_or(0.0, |f| direction[f] * t[k])
-                    })
-                    .sum::<f64>()
-            })
-            .sum()
-    }
-    fn bias(&self) -> &[f64] {
-        &self.bias
+        let proj = self
+            .projector
+            .get_or_insert_with(|| Projector::new(m.unknowns(), &m.edge_nodes));
+        let r = proj.correction(m.unknowns(), &m.edge_nodes, &m.state.q, step, c);
+        if let (true, Some(contact)) = (r, &m.contact) {
+            contact.limit_correction(&m.state.q, m.unknowns(), step, c);
+        }
+        r
     }
     fn excess_force(&mut self, trial: &[f64], linear: (&[f64], f64), f: &mut [f64]) -> f64 {
         let m = &*self.model;
@@ -410,58 +419,9 @@ impl NewtonProblem for NetworkProblem<'_> {
             .as_ref()
             .is_none_or(|c| c.shapes.is_empty())
     }
-    fn limit_correction(&self, step: &[f64], c: &mut [f64]) {
-        let m = &*self.model;
-        if let Some(contact) = &m.contact {
-            contact.limit_correction(&m.state.q, m.unknowns(), step, c);
-        }
-    }
-    fn step_correction(&mut self, step: &[f64], c: &mut [f64]) -> bool {
-        let m = &*self.model;
-        let proj = self
-            .projector
-            .get_or_insert_with(|| Projector::new(m.unknowns(), &m.edge_nodes));
-        let r = proj.correction(m.unknowns(), &m.edge_nodes, &m.state.q, step, c);
-        if let (true, Some(contact)) = (r, &m.contact) {
-            contact.limit_correction(&m.state.q, m.unknowns(), step, c);
-        }
-        r
-    }
-    fn max_step(&self, step: &[f64]) -> f64 {
-        self.model.max_step(step)
-    }
-    fn accept(&mut self, step: &[f64], alpha: f64) {
-        self.model.displace(step, alpha);
-        self.model.commit();
-    }
-    fn relative_residual(&self, grad: &[f64]) -> f64 {
-        self.model.relative_residual(grad)
-    }
-    fn unknown_positions(&self) -> Option<Vec<[f64; 3]>> {
-        Some(self.model.unknown_positions())
-    }
-    fn continuation_is_trivial(&self) -> bool {
-        self.model.continuation_is_trivial()
-    }
-    fn set_continuation(&mut self, lambda: f64) {
-        let (a, b) = self.load_range;
-        self.lambda = lambda;
-        self.model.set_load(a + lambda * (b - a));
-        // Prescribed variables moved: reference frames must follow before the next assembly.
-        self.model.commit();
-    }
-    fn perturbation_size(&self, direction: &[f64]) -> f64 {
-        self.model.perturbation_size(direction)
-    }
-    fn unknown_scales(&self, scales: &mut [f64]) {
-        self.model.unknown_scales(scales)
-    }
-    fn skew_stiffness(&self) -> f64 {
-        self.model.dead_torque_skew()
-    }
-    fn skew_image(&self, v: &[f64], out: &mut [f64]) {
-        self.model.dead_torque_image(v, out)
-    }
+}
+
+impl Constraints for NetworkProblem<'_> {
     fn num_constraints(&self) -> usize {
         self.model.contact.as_ref().map_or(0, |c| c.len())
     }
@@ -487,5 +447,82 @@ impl NewtonProblem for NetworkProblem<'_> {
         m.state.q = current;
         m.contact = Some(contact);
         ok
+    }
+    fn limit_correction(&self, step: &[f64], c: &mut [f64]) {
+        let m = &*self.model;
+        if let Some(contact) = &m.contact {
+            contact.limit_correction(&m.state.q, m.unknowns(), step, c);
+        }
+    }
+}
+
+impl Gauge for NetworkProblem<'_> {
+    fn gauge_modes(&mut self) -> Vec<Vec<f64>> {
+        crate::network::mechanism::gauge_modes(self.model, self.gauge_node)
+    }
+    fn gauge_turns(&mut self) -> Option<crate::solver::problem::TurnPaths> {
+        crate::network::mechanism::turn_paths(self.model, self.gauge_node)
+    }
+    fn gauge_only(&mut self, modes: &[Vec<f64>]) -> bool {
+        crate::network::mechanism::gauge_only(self.model, self.gauge_node, modes)
+    }
+}
+
+impl Mechanisms for NetworkProblem<'_> {
+    fn mechanism(&mut self, modes: &[Vec<f64>]) -> Option<String> {
+        // The load vector: the rate at which the load factor changes the gradient at the
+        // current state (dead loads, and the pull of prescribed motions on the free unknowns),
+        // measured over a small increment towards λ = 1. Jumping to λ = 1 moved a prescribed
+        // end past its neighbours (a slack wire's pin moved by 5 edges): the reversed edges'
+        // frames were committed as NaN and poisoned every later attempt. The state is restored
+        // from a snapshot, not by setting λ back (which commits the frames once more).
+        let saved = self.model.state.clone();
+        let lam = self.lambda;
+        let probe = lam + MECHANISM_PROBE * (1.0 - lam);
+        let n = self.model.n_free;
+        let (mut g0, mut g1) = (vec![0.0; n], vec![0.0; n]);
+        self.assemble(&mut g0, None);
+        self.set_continuation(probe);
+        self.assemble(&mut g1, None);
+        self.model.state.clone_from(&saved);
+        self.lambda = lam;
+        g1.iter_mut().zip(&g0).for_each(|(a, b)| *a -= b);
+        crate::network::mechanism::describe(self.model, self.rods, self.gauge_node, modes, &g1)
+    }
+    fn deforms(&mut self, mode: &[f64]) -> bool {
+        crate::network::mechanism::deforms(self.model, self.rods, mode)
+    }
+    fn zero_stiffness(&mut self) -> f64 {
+        crate::network::stability::zero_stiffness(self.model, self.rods)
+    }
+}
+
+impl SymmetryBreak for NetworkProblem<'_> {
+    fn orientation(&self, direction: &[f64]) -> f64 {
+        let Some(t) = self.toward else { return 0.0 };
+        let m = &*self.model;
+        (0..m.layout.n_nodes())
+            .map(|n| {
+                (0..3)
+                    .map(|k| {
+                        m.unknowns()
+                            .of_node(n, k)
+                            .map_or(0.0, |f| direction[f] * t[k])
+                    })
+                    .sum::<f64>()
+            })
+            .sum()
+    }
+    fn bias(&self) -> &[f64] {
+        &self.bias
+    }
+}
+
+impl NonConservative for NetworkProblem<'_> {
+    fn skew_stiffness(&self) -> f64 {
+        self.model.dead_torque_skew()
+    }
+    fn skew_image(&self, v: &[f64], out: &mut [f64]) {
+        self.model.dead_torque_image(v, out)
     }
 }

@@ -54,7 +54,7 @@ pub fn analyse_problem(p: &mut NetworkProblem, k: usize) -> Result<Stability, St
     let analyses = p.model.analyses.clone();
     let sp = spectrum::lowest_modes(p, k, Ordering::Auto, &analyses)?;
     let zero: Vec<Vec<f64>> = zero_vectors(&sp);
-    let gauge = !zero.is_empty() && crate::solver::NewtonProblem::gauge_only(p, &zero);
+    let gauge = !zero.is_empty() && crate::solver::problem::Gauge::gauge_only(p, &zero);
     let negative = (0..sp.values.len())
         .filter(|&i| sp.values[i] < 0.0 && !sp.is_zero(i))
         .count();

@@ -16,7 +16,7 @@ use std::time::Instant;
 use super::modes::wdot;
 use super::newton::{Limits, Newton, Outcome};
 use super::path_events::{EventKind, PathEvent};
-use super::problem::NewtonProblem;
+use super::problem::{ContinuationPath, Core, NewtonProblem};
 use super::settings::{LimitPoint, NewtonSettings};
 
 /// Corrector iterations before Δs is halved.
@@ -236,7 +236,7 @@ fn locate<P: NewtonProblem>(
 
 /// ∂g/∂λ at the current state by a central difference (exact for dead loads, whose gradient is
 /// linear in λ; prescribed motions move with λ as well).
-fn g_lambda<P: NewtonProblem>(p: &mut P, lam: f64, n: usize) -> Vec<f64> {
+fn g_lambda<P: Core + ContinuationPath>(p: &mut P, lam: f64, n: usize) -> Vec<f64> {
     let h = 1e-4;
     let (mut a, mut b) = (vec![0.0; n], vec![0.0; n]);
     p.set_continuation(lam + h);

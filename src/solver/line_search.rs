@@ -1,6 +1,6 @@
 //! The line search of a Newton step.
 
-use super::problem::NewtonProblem;
+use super::problem::{Constraints, Core, LengthRepair, Steps};
 use super::step::Second;
 
 /// Backtracking Armijo search along x + αd + α²c for each candidate correction c (or along
@@ -52,7 +52,7 @@ pub(super) struct SecondCurve<'b> {
 
 impl SecondCurve<'_> {
     /// The correction, made now if it was deferred.
-    fn get<P: NewtonProblem>(&mut self, p: &mut P, d: &[f64]) -> Option<&[f64]> {
+    fn get<P: LengthRepair>(&mut self, p: &mut P, d: &[f64]) -> Option<&[f64]> {
         if self.state == Second::Deferred {
             self.state = if p.step_correction(d, self.buf) {
                 Second::Ready
@@ -72,7 +72,7 @@ impl Search<'_> {
     }
 
     /// Largest α ≤ max_step(d) at which the first curve is admissible as a whole.
-    fn start<P: NewtonProblem>(&self, p: &P, trial: &mut [f64]) -> f64 {
+    fn start<P: Steps>(&self, p: &P, trial: &mut [f64]) -> f64 {
         let mut alpha = p.max_step(self.d);
         for _ in 0..60 {
             self.fill(self.first, alpha, trial);
@@ -86,7 +86,7 @@ impl Search<'_> {
     }
 
     /// Returns the accepted α (the step is in `trial`), or None.
-    pub fn run<P: NewtonProblem>(
+    pub fn run<P: Core + Steps + LengthRepair + Constraints>(
         &self,
         p: &mut P,
         (trial, kept): (&mut [f64], &mut [f64]),

@@ -13,6 +13,7 @@ mod regularize;
 pub mod saddle;
 pub mod settings;
 pub mod spectrum;
+mod stationary;
 mod step;
 pub mod verdict;
 

@@ -5,6 +5,7 @@
 //! dead loads make a free structure's rigid turn unstable.
 
 use super::newton::Newton;
+use super::problem::{ContinuationPath, Core, Gauge};
 
 impl Newton {
     /// At a stationary point whose Hessian has no negative curvature but needed a shift: is
@@ -63,7 +64,7 @@ impl Newton {
     /// is a saddle. The turns' stiffness matrix is G_jk = r_jᵀ H r_k + gᵀ c_jk at λ = 1 (H and
     /// g there, c the turns' second-order motion); unstable when its lowest eigenvalue is
     /// negative beyond round-off.
-    pub(super) fn turns_unstable_under_full_load<P: super::NewtonProblem>(
+    pub(super) fn turns_unstable_under_full_load<P: Core + ContinuationPath + Gauge>(
         &mut self,
         p: &mut P,
     ) -> bool {

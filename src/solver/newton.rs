@@ -18,15 +18,15 @@ use std::time::Instant;
 
 use super::linalg::SparseCholesky;
 use super::line_search::{Search, SecondCurve};
-use super::problem::NewtonProblem;
+use super::problem::{Core, NewtonProblem};
 use super::qp::StepQp;
-use super::regularize::Saddle;
 use super::settings::{NewtonReport, NewtonSettings};
+use super::stationary::settled;
 use super::step::{repair_lengths, Second};
 
 /// Relative residual below which a full Newton step on a positive definite Hessian may be
 /// accepted for reducing the residual when the Armijo test cannot resolve the energy change.
-const TRUSTED_RESIDUAL: f64 = 1e-4;
+pub(super) const TRUSTED_RESIDUAL: f64 = 1e-4;
 /// A full, unshifted Newton step at most this large in the unknowns' scales (edge lengths,
 /// radians) moves nothing that matters: below the round-off floor, Newton takes it without a
 /// line search and stops instead of assembling once more to see round-off stall the residual
@@ -52,12 +52,6 @@ const ENERGY_CONVERGED: f64 = 1e-2;
 /// carries more than half the step's curvature: far in an indefinite region, a smaller
 /// increment is cheaper.
 const INDEFINITE_STEPS: usize = 3;
-
-/// Why a stationary point is not called stable although no saddle escape left it.
-const UNDECIDED: &str = "stability not decided: the energy's Hessian has negative curvature \
-    that the dead moments' non-symmetric stiffness may remove (a dead moment is not \
-    conservative for 3-D rotations; the state is an equilibrium, and the energy cannot judge \
-    its stability)";
 
 /// How Newton iterations at one continuation parameter ended.
 pub(super) enum Outcome {
@@ -132,6 +126,36 @@ pub(super) struct Newton {
     pub(super) report: NewtonReport,
 }
 
+/// What `Newton::iterate` carries from one iteration to the next.
+struct Tally {
+    it: usize,
+    escapes: usize,
+    damped: usize,
+    indefinite: usize,
+    last_res: f64,
+    /// Scaled size of the last step if it was a full, unshifted Newton step.
+    last_step: f64,
+    last_energy: f64,
+    prev_energy: f64,
+    floor: Option<f64>,
+}
+
+impl Default for Tally {
+    fn default() -> Tally {
+        Tally {
+            it: 0,
+            escapes: 0,
+            damped: 0,
+            indefinite: 0,
+            last_res: f64::INFINITY,
+            last_step: f64::INFINITY,
+            last_energy: f64::INFINITY,
+            prev_energy: f64::INFINITY,
+            floor: None,
+        }
+    }
+}
+
 impl Newton {
     pub(super) fn new(chol: SparseCholesky, qp: Option<StepQp>, n: usize) -> Newton {
         let m = qp.is_some();
@@ -166,207 +190,212 @@ impl Newton {
         lim: &Limits,
         step: usize,
     ) -> Outcome {
-        let mut it = 0;
-        let mut escapes = 0;
-        let mut damped = 0;
-        let mut indefinite = 0;
-        let mut last_res = f64::INFINITY;
-        // Scaled size of the last step if it was a full, unshifted Newton step.
-        let mut last_step = f64::INFINITY;
-        let mut last_energy = f64::INFINITY;
-        let mut prev_energy = f64::INFINITY;
-        let mut floor: Option<f64> = None;
+        let mut t = Tally::default();
         self.report.stability_note = None;
         loop {
-            let e0 = p.assemble(&mut self.g, Some(&mut self.chol.values));
-            let mut res = p.relative_residual(&self.g);
-            self.report.residual = res;
-            self.report.energy = e0;
-            if !e0.is_finite() || !res.is_finite() {
-                return Outcome::Failed(format!("non-finite energy or residual at iteration {it}"));
-            }
-            // With constraints the step, and with it the multipliers, comes first: convergence
-            // is judged on the KKT stationarity residual g − Jᵀz, not on g.
-            let mut qp_shift = None;
-            if self.qp.is_some() {
-                match self.constrained_step(p) {
-                    Ok((shift, r)) => {
-                        qp_shift = Some(shift);
-                        res = r;
-                        self.report.residual = res;
-                    }
-                    Err(msg) => return Outcome::Failed(format!("{msg} at iteration {it}")),
-                }
-            }
-            if let Some(cb) = &s.progress {
-                cb(step, self.report.iterations, res, e0);
-            }
-            if floor.is_none() && (res < FLOOR_CHECK || it + 1 >= lim.cap) {
-                let f = p.residual_floor(&self.g);
-                self.report.residual_floor = f;
-                floor = Some(f);
-            }
-            let floor = floor.unwrap_or(0.0);
-            // The floor is measured with one pattern of rounding errors: below it, keep
-            // iterating while Newton still halves the residual, and stop when round-off stalls it
-            // or the last full Newton step moved nothing (`NEGLIGIBLE_STEP`).
-            let stalled = res >= 0.5 * last_res || last_step <= NEGLIGIBLE_STEP;
-            last_res = res;
-            let done = |r: f64| {
-                if r < lim.tolerance {
-                    Outcome::Converged
-                } else {
-                    Outcome::AtFloor
-                }
-            };
-            if res < lim.tolerance || (res < floor && stalled) {
-                let Some(shift) = qp_shift.or_else(|| self.factor_regularized()) else {
-                    return Outcome::Failed(format!(
-                        "Hessian could not be regularized (residual {res:.3e})"
-                    ));
-                };
-                if shift == 0.0 {
-                    if lim.judge_stability {
-                        self.report.stable = self.stable_unshifted(p);
-                    }
-                    return done(res);
-                }
-                match self.escape_saddle(p, e0) {
-                    Saddle::ZeroModesOnly => {
-                        if lim.judge_stability {
-                            self.report.stable = self.gauge_modes_only(p);
-                        }
-                        return done(res);
-                    }
-                    Saddle::Escaped if escapes < 8 => {
-                        escapes += 1;
-                        self.report.saddle_escapes += 1;
-                        continue;
-                    }
-                    Saddle::Undecided => {
-                        self.report.stable = false;
-                        self.report.stability_note = Some(UNDECIDED.into());
-                        return done(res);
-                    }
-                    _ => {
-                        self.report.stable = false;
-                        return done(res);
-                    }
-                }
-            }
-            if it >= lim.cap && res < floor && (stalled || it >= lim.extended_cap) {
-                // Below the round-off floor Newton may still creep; that is as far as it goes.
-                return Outcome::AtFloor;
-            }
-            let budget = || {
-                Outcome::Budget(format!(
-                    "{it} Newton iterations: relative residual {res:.3e} > tolerance {:.1e}",
-                    lim.tolerance
-                ))
-            };
-            // Below the floor and still halving the residual, Newton is in its quadratic phase:
-            // the residual no longer sees errors along soft modes (on a slender cantilever,
-            // 1e-9 of the tip position is 1e-9 of the force scale), and the step that the cap
-            // would cut short is the one that removes them.
-            let at_cap = it >= lim.cap && res >= floor;
-            if at_cap && (it >= lim.extended_cap || self.qp.is_some()) {
-                return budget();
-            }
-            if lim.deadline.is_some_and(|t| Instant::now() >= t) {
-                return Outcome::Budget(format!(
-                    "time limit reached after {it} Newton iterations: relative residual {res:.3e}"
-                ));
-            }
-            let Some(shift) = qp_shift.or_else(|| self.factor_regularized()) else {
-                return Outcome::Failed(format!(
-                    "Hessian could not be regularized at iteration {it} (residual {res:.3e})"
-                ));
-            };
-            let newton_own = shift > 0.0 && qp_shift.is_none() && self.indefinite_step(p);
-            let shift = if newton_own { 0.0 } else { shift };
-            if shift > 0.0 {
-                self.report.regularized_iterations += 1;
-            }
-            if qp_shift.is_none() && !newton_own {
-                self.d.iter_mut().zip(&self.g).for_each(|(d, g)| *d = -g);
-                let ts = Instant::now();
-                self.chol.solve(&mut self.d);
-                self.report.factor_seconds += ts.elapsed().as_secs_f64();
-                // Below the floor a negligible full step needs no line search, and the next
-                // assembly would only show round-off stall the residual: take it and stop, with
-                // the stability of the factor just made and the residual before the step.
-                if shift == 0.0 && res < floor && self.scaled_step() <= NEGLIGIBLE_STEP {
-                    p.accept(&self.d, 1.0);
-                    self.report.iterations += 1;
-                    if lim.judge_stability {
-                        self.report.stable = self.stable_unshifted(p);
-                    }
-                    return done(res);
-                }
-            }
-            indefinite = if self.shift_share(shift) > 0.5 {
-                indefinite + 1
-            } else {
-                0
-            };
-            let recent = if prev_energy.is_finite() {
-                (prev_energy, 2.0)
-            } else {
-                (last_energy, 1.0)
-            };
-            if at_cap && !self.converging(e0, recent, shift) {
-                return budget();
-            }
-            prev_energy = last_energy;
-            last_energy = e0;
-            let curves = self.corrections(p, shift);
-            let mut small_step = false;
-            last_step = f64::INFINITY;
-            match self.search(p, (e0, shift, res), curves) {
-                Some(alpha) => {
-                    damped = if alpha < 0.5 { damped + 1 } else { 0 };
-                    if alpha == 1.0 && shift == 0.0 && qp_shift.is_none() {
-                        last_step = self.scaled_step();
-                    }
-                    small_step = alpha == 1.0
-                        && it > 0
-                        && shift == 0.0
-                        && qp_shift.is_none()
-                        && lim.step_tolerance.is_some_and(|t| self.scaled_step() <= t);
-                }
-                None => {
-                    let corrected = curves.0;
-                    let failed = (e0, shift, res, floor, corrected);
-                    if let Err(outcome) =
-                        self.after_failed_search(p, failed, lim.judge_stability, &mut escapes)
-                    {
-                        return outcome;
-                    }
-                }
-            }
-            it += 1;
-            self.report.iterations += 1;
-            if small_step {
-                return Outcome::Converged;
-            }
-            // Repeatedly damped steps far from the solution: a smaller increment is cheaper.
-            if indefinite >= INDEFINITE_STEPS && lim.retry_on_damping {
-                return Outcome::Failed(format!("indefinite Newton steps (residual {res:.3e})"));
-            }
-            if damped >= 4 && lim.retry_on_damping {
-                return Outcome::Failed(format!("damped Newton steps (residual {res:.3e})"));
+            if let Err(outcome) = self.iteration(p, s, lim, step, &mut t) {
+                return outcome;
             }
         }
     }
 
-    /// Whether the equilibrium whose unshifted Hessian is factored is stable: a singular
-    /// Hessian can factor behind a round-off pivot, so near-singular factors are checked for
-    /// modes other than the gauges.
-    fn stable_unshifted<P: NewtonProblem>(&mut self, p: &mut P) -> bool {
-        let gauges = p.gauge_modes();
-        let singular = self.near_singular(&gauges);
-        self.report.zero_modes = 0;
-        !singular || self.gauge_modes_only(p)
+    /// One iteration: assess the iterate, stop at a stationary point or at the limits, factor,
+    /// search and accept. Err ends the iterations with that outcome.
+    fn iteration<P: NewtonProblem>(
+        &mut self,
+        p: &mut P,
+        s: &NewtonSettings,
+        lim: &Limits,
+        step: usize,
+        t: &mut Tally,
+    ) -> Result<(), Outcome> {
+        let (e0, res, qp_shift) = self.assess(p, s, step, t.it)?;
+        let floor = self.measure_floor(p, lim, res, t);
+        // The floor is measured with one pattern of rounding errors: below it, keep
+        // iterating while Newton still halves the residual, and stop when round-off stalls it
+        // or the last full Newton step moved nothing (`NEGLIGIBLE_STEP`).
+        let stalled = res >= 0.5 * t.last_res || t.last_step <= NEGLIGIBLE_STEP;
+        t.last_res = res;
+        if res < lim.tolerance || (res < floor && stalled) {
+            return self.at_stationary(p, lim, (e0, res, qp_shift), &mut t.escapes);
+        }
+        let at_cap = self.check_limits(lim, t.it, res, floor, stalled)?;
+        let shift = self.factor_step(p, lim, (res, floor, qp_shift), t.it)?;
+        t.indefinite = if self.shift_share(shift) > 0.5 {
+            t.indefinite + 1
+        } else {
+            0
+        };
+        let recent = if t.prev_energy.is_finite() {
+            (t.prev_energy, 2.0)
+        } else {
+            (t.last_energy, 1.0)
+        };
+        if at_cap && !self.converging(e0, recent, shift) {
+            return Err(budget(t.it, res, lim));
+        }
+        t.prev_energy = t.last_energy;
+        t.last_energy = e0;
+        let small_step = self.search_and_accept(p, lim, (e0, shift, res, floor, qp_shift), t)?;
+        t.it += 1;
+        self.report.iterations += 1;
+        if small_step {
+            return Err(Outcome::Converged);
+        }
+        give_up_on_damping(lim, t, res)
+    }
+
+    /// Assembles energy, gradient and Hessian at the iterate and measures its residual; with
+    /// constraints, makes the QP step first and returns its shift. Returns (energy, residual,
+    /// the QP's shift).
+    fn assess<P: NewtonProblem>(
+        &mut self,
+        p: &mut P,
+        s: &NewtonSettings,
+        step: usize,
+        it: usize,
+    ) -> Result<(f64, f64, Option<f64>), Outcome> {
+        let e0 = p.assemble(&mut self.g, Some(&mut self.chol.values));
+        let mut res = p.relative_residual(&self.g);
+        self.report.residual = res;
+        self.report.energy = e0;
+        if !e0.is_finite() || !res.is_finite() {
+            return Err(Outcome::Failed(format!(
+                "non-finite energy or residual at iteration {it}"
+            )));
+        }
+        // With constraints the step, and with it the multipliers, comes first: convergence
+        // is judged on the KKT stationarity residual g − Jᵀz, not on g.
+        let mut qp_shift = None;
+        if self.qp.is_some() {
+            match self.constrained_step(p) {
+                Ok((shift, r)) => {
+                    qp_shift = Some(shift);
+                    res = r;
+                    self.report.residual = res;
+                }
+                Err(msg) => return Err(Outcome::Failed(format!("{msg} at iteration {it}"))),
+            }
+        }
+        if let Some(cb) = &s.progress {
+            cb(step, self.report.iterations, res, e0);
+        }
+        Ok((e0, res, qp_shift))
+    }
+
+    /// The round-off floor, measured once per `iterate` when the residual first comes near
+    /// it (or the cap does); 0 until then.
+    fn measure_floor<P: Core>(&mut self, p: &mut P, lim: &Limits, res: f64, t: &mut Tally) -> f64 {
+        if t.floor.is_none() && (res < FLOOR_CHECK || t.it + 1 >= lim.cap) {
+            let f = p.residual_floor(&self.g);
+            self.report.residual_floor = f;
+            t.floor = Some(f);
+        }
+        t.floor.unwrap_or(0.0)
+    }
+
+    /// The iteration cap and the deadline. Ok(at_cap): the cap is reached above the floor but
+    /// the attempt may go on if it is converging (`converging`).
+    fn check_limits(
+        &self,
+        lim: &Limits,
+        it: usize,
+        res: f64,
+        floor: f64,
+        stalled: bool,
+    ) -> Result<bool, Outcome> {
+        if it >= lim.cap && res < floor && (stalled || it >= lim.extended_cap) {
+            // Below the round-off floor Newton may still creep; that is as far as it goes.
+            return Err(Outcome::AtFloor);
+        }
+        // Below the floor and still halving the residual, Newton is in its quadratic phase:
+        // the residual no longer sees errors along soft modes (on a slender cantilever,
+        // 1e-9 of the tip position is 1e-9 of the force scale), and the step that the cap
+        // would cut short is the one that removes them.
+        let at_cap = it >= lim.cap && res >= floor;
+        if at_cap && (it >= lim.extended_cap || self.qp.is_some()) {
+            return Err(budget(it, res, lim));
+        }
+        if lim.deadline.is_some_and(|t| Instant::now() >= t) {
+            return Err(Outcome::Budget(format!(
+                "time limit reached after {it} Newton iterations: relative residual {res:.3e}"
+            )));
+        }
+        Ok(at_cap)
+    }
+
+    /// Factors the Hessian with the shift it needs (or takes the QP's step and shift) and puts
+    /// the step in `d`; returns the shift. A negligible full step below the floor is taken
+    /// here and ends the iterations.
+    fn factor_step<P: NewtonProblem>(
+        &mut self,
+        p: &mut P,
+        lim: &Limits,
+        (res, floor, qp_shift): (f64, f64, Option<f64>),
+        it: usize,
+    ) -> Result<f64, Outcome> {
+        let Some(shift) = qp_shift.or_else(|| self.factor_regularized()) else {
+            return Err(Outcome::Failed(format!(
+                "Hessian could not be regularized at iteration {it} (residual {res:.3e})"
+            )));
+        };
+        let newton_own = shift > 0.0 && qp_shift.is_none() && self.indefinite_step(p);
+        let shift = if newton_own { 0.0 } else { shift };
+        if shift > 0.0 {
+            self.report.regularized_iterations += 1;
+        }
+        if qp_shift.is_none() && !newton_own {
+            self.d.iter_mut().zip(&self.g).for_each(|(d, g)| *d = -g);
+            let ts = Instant::now();
+            self.chol.solve(&mut self.d);
+            self.report.factor_seconds += ts.elapsed().as_secs_f64();
+            // Below the floor a negligible full step needs no line search, and the next
+            // assembly would only show round-off stall the residual: take it and stop, with
+            // the stability of the factor just made and the residual before the step.
+            if shift == 0.0 && res < floor && self.scaled_step() <= NEGLIGIBLE_STEP {
+                p.accept(&self.d, 1.0);
+                self.report.iterations += 1;
+                if lim.judge_stability {
+                    self.report.stable = self.stable_unshifted(p);
+                }
+                return Err(settled(res, lim));
+            }
+        }
+        Ok(shift)
+    }
+
+    /// Corrects the step, searches along it and accepts the point found (or handles a failed
+    /// search). Returns whether the step was small enough to end an intermediate attempt
+    /// (`Limits::step_tolerance`).
+    fn search_and_accept<P: NewtonProblem>(
+        &mut self,
+        p: &mut P,
+        lim: &Limits,
+        (e0, shift, res, floor, qp_shift): (f64, f64, f64, f64, Option<f64>),
+        t: &mut Tally,
+    ) -> Result<bool, Outcome> {
+        let curves = self.corrections(p, shift);
+        let mut small_step = false;
+        t.last_step = f64::INFINITY;
+        match self.search(p, (e0, shift, res), curves) {
+            Some(alpha) => {
+                t.damped = if alpha < 0.5 { t.damped + 1 } else { 0 };
+                if alpha == 1.0 && shift == 0.0 && qp_shift.is_none() {
+                    t.last_step = self.scaled_step();
+                }
+                small_step = alpha == 1.0
+                    && t.it > 0
+                    && shift == 0.0
+                    && qp_shift.is_none()
+                    && lim.step_tolerance.is_some_and(|s| self.scaled_step() <= s);
+            }
+            None => {
+                let corrected = curves.0;
+                let failed = (e0, shift, res, floor, corrected);
+                self.after_failed_search(p, failed, lim.judge_stability, &mut t.escapes)?;
+            }
+        }
+        Ok(small_step)
     }
 
     /// Whether the current step is Newton's own on the unshifted Hessian, without constraint
@@ -463,60 +492,28 @@ impl Newton {
         p.accept(&self.trial, 1.0);
         Some(alpha)
     }
+}
 
-    /// When no step length passes: energy differences below round-off, or a saddle. Err ends
-    /// the iterations with that outcome. `corrected`: `c` holds the step's first correction,
-    /// left there by the failed search.
-    fn after_failed_search<P: NewtonProblem>(
-        &mut self,
-        p: &mut P,
-        (e0, shift, res, floor, corrected): (f64, f64, f64, f64, bool),
-        judge: bool,
-        escapes: &mut usize,
-    ) -> Result<(), Outcome> {
-        // Judge the full step by its residual.
-        let n = self.d.len();
-        for i in 0..n {
-            self.trial[i] = self.d[i] + if corrected { self.c[i] } else { 0.0 };
-        }
-        p.trial_gradient(&self.trial, 1.0, &mut self.g_trial);
-        let res_trial = p.relative_residual(&self.g_trial);
-        // Only where the Hessian is positive definite (a convex model: reducing the residual
-        // approaches a minimum, not a saddle) and the residual is small. (With constraint forces
-        // the plain gradient is no residual: never trusted.)
-        let trusted = self.on_newton_model(shift) && res < TRUSTED_RESIDUAL;
-        let failed =
-            || Outcome::Failed(format!("line search failed (relative residual {res:.3e})"));
-        if trusted && res_trial < 0.9 * res && p.max_step(&self.trial) >= 1.0 {
-            p.accept(&self.trial, 1.0);
-            Ok(())
-        } else if shift > 0.0 && *escapes < 8 {
-            // No descent along the regularized Newton step near a stationary point of an
-            // indefinite Hessian: leave along negative curvature instead.
-            match self.escape_saddle(p, e0) {
-                Saddle::Escaped => {
-                    *escapes += 1;
-                    self.report.saddle_escapes += 1;
-                    Ok(())
-                }
-                Saddle::ZeroModesOnly if res < floor => {
-                    if judge {
-                        self.report.stable = self.gauge_modes_only(p);
-                    }
-                    Err(Outcome::AtFloor)
-                }
-                _ if res < floor => {
-                    self.report.stable = false;
-                    Err(Outcome::AtFloor)
-                }
-                _ => Err(failed()),
-            }
-        } else if res < floor {
-            // Round-off stalled Newton below the floor.
-            self.report.stable = shift == 0.0;
-            Err(Outcome::AtFloor)
-        } else {
-            Err(failed())
-        }
+/// The iteration budget ran out at iteration `it`.
+fn budget(it: usize, res: f64, lim: &Limits) -> Outcome {
+    Outcome::Budget(format!(
+        "{it} Newton iterations: relative residual {res:.3e} > tolerance {:.1e}",
+        lim.tolerance
+    ))
+}
+
+/// Repeatedly damped or indefinite steps far from the solution: a smaller increment is
+/// cheaper (`Limits::retry_on_damping`).
+fn give_up_on_damping(lim: &Limits, t: &Tally, res: f64) -> Result<(), Outcome> {
+    if t.indefinite >= INDEFINITE_STEPS && lim.retry_on_damping {
+        return Err(Outcome::Failed(format!(
+            "indefinite Newton steps (residual {res:.3e})"
+        )));
     }
+    if t.damped >= 4 && lim.retry_on_damping {
+        return Err(Outcome::Failed(format!(
+            "damped Newton steps (residual {res:.3e})"
+        )));
+    }
+    Ok(())
 }

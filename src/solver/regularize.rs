@@ -5,7 +5,7 @@ use std::time::Instant;
 
 use super::linalg::SparseCholesky;
 use super::newton::Newton;
-use super::problem::NewtonProblem;
+use super::problem::{NewtonProblem, NonConservative};
 
 /// What the search for negative curvature at a stationary point found.
 pub(super) enum Saddle {
@@ -60,12 +60,12 @@ impl Newton {
         None
     }
 
-    /// With non-conservative loads (`NewtonProblem::skew_stiffness`), a stationary point is an
+    /// With non-conservative loads (`NonConservative::skew_stiffness`), a stationary point is an
     /// equilibrium whatever the inertia of the energy's Hessian H, which is only the symmetric
     /// part of the tangent; where H stays indefinite up to the equilibrium, the shifted step
     /// (H + τW) would converge only linearly. Puts Newton's own step −H⁻¹g in `d` (LDLᵀ) when it
     /// is accurate and descends the merit energy; false otherwise (the shifted step is used).
-    pub(super) fn indefinite_step<P: NewtonProblem>(&mut self, p: &P) -> bool {
+    pub(super) fn indefinite_step<P: NonConservative>(&mut self, p: &P) -> bool {
         if p.skew_stiffness() == 0.0 {
             return false;
         }
@@ -196,7 +196,7 @@ impl Newton {
 /// end moment: the in-plane equilibrium is unique at every moment, yet H turns indefinite
 /// out of plane once M·L/GJ passes about π). Below it, S leaves the instability (a column
 /// past buckling with a small dead torque on its top). `w`: scratch.
-fn skew_stabilizes<P: NewtonProblem>(
+fn skew_stabilizes<P: NonConservative>(
     chol: &mut SparseCholesky,
     p: &P,
     (v, w): (&[f64], &mut [f64]),

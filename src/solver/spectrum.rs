@@ -10,7 +10,7 @@
 use super::linalg::AnalysisCache;
 use super::modes::{generalized, gram, orthonormalize, ritz_vectors, start_block, wdot};
 use super::newton::Newton;
-use super::problem::NewtonProblem;
+use super::problem::{Mechanisms, NewtonProblem};
 use super::Ordering;
 
 /// Rounds of subspace iteration before an eigen-solve gives up.
@@ -65,13 +65,13 @@ pub(super) fn zero_band(residual: f64, gradient: f64, scale: f64) -> f64 {
 
 /// [`zero_band`] of the W-unit mode `u` with Ritz residual `residual`, decided by what the mode
 /// does. A mode that deforms a rod is no symmetry's (no gradient share) and costs bending
-/// energy: its band is also capped at `NewtonProblem::zero_stiffness`, a negligible fraction
+/// energy: its band is also capped at `Mechanisms::zero_stiffness`, a negligible fraction
 /// of the softest stiffness a rod of the structure can have. Without that cap the round-off
 /// part alone (1e-13 of a scale dominated by the stiffest, shortest stencils) swallowed a
 /// refined rod's physical bending modes, whose eigenvalues fall as 1/n³ in W against a scale
 /// that grows as n: a clamped cantilever (r/L = 1e-2) at 10⁴ edges, lowest eigenvalue 2.7e-16
 /// of the scale and yet within 0.6 % of n·λ's limit, was "neutral" (docs/stability.md).
-pub(super) fn mode_band<P: NewtonProblem>(
+pub(super) fn mode_band<P: Mechanisms>(
     p: &mut P,
     u: &[f64],
     residual: f64,

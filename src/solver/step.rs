@@ -5,7 +5,7 @@ use std::time::Instant;
 
 use super::linalg::SparseCholesky;
 use super::newton::Newton;
-use super::problem::NewtonProblem;
+use super::problem::{Constraints, Core, LengthRepair, NewtonProblem};
 
 /// Lowest modes examined for zero stiffness at the start of a path (an unsupported body has
 /// three gauge turns; a fourth would be a mechanism).
@@ -44,7 +44,7 @@ pub(super) enum Second {
 /// EA/EI ≈ (L/r)² times the bending the step relieves, and the line search cut the step 16-fold.
 /// Passes stop once the excess energy is below `REPAIR_SHARE` of the predicted decrease, or
 /// when a pass removes less than three quarters of it. Returns whether `trial` was moved.
-pub(super) fn repair_lengths<P: NewtonProblem>(
+pub(super) fn repair_lengths<P: LengthRepair>(
     p: &mut P,
     (chol, f): (&mut SparseCholesky, &mut [f64]),
     (d, slope): (&[f64], f64),
@@ -92,7 +92,7 @@ impl Newton {
     /// On Newton's own step (`on_newton_model`: the line search may skip the second curve, see
     /// `line_search`), the geometric correction behind the energy-optimal one is not made here
     /// but returned as [`Second::Deferred`], for the line search to make if it tries that curve.
-    pub(super) fn corrections<P: NewtonProblem>(
+    pub(super) fn corrections<P: LengthRepair + Constraints>(
         &mut self,
         p: &mut P,
         shift: f64,
@@ -351,7 +351,7 @@ impl Newton {
 
     /// Factors H + τI as for an unconstrained step, then solves the step QP with it at the
     /// current iterate. Returns the shift and the relative stationarity residual.
-    pub(super) fn constrained_step<P: NewtonProblem>(
+    pub(super) fn constrained_step<P: Core + Constraints>(
         &mut self,
         p: &mut P,
     ) -> Result<(f64, f64), String> {

@@ -1,4 +1,6 @@
-//! `buckle_toward`: which side a symmetric problem leaves its symmetric state toward.
+//! `solve_toward`, the solve of every scene: with the scene's `buckle_toward`, which side a
+//! symmetric problem leaves its symmetric state toward (the name says "buckle" for the user's
+//! sense of leaving a flat state; linear buckling is `solver::spectrum::linear_buckling`).
 //!
 //! A flat footprint whose ends move inward, or a column under its load, is in equilibrium in its
 //! symmetric state all along the path; which way it buckles is decided by round-off. With a
@@ -18,7 +20,7 @@ use crate::solver::{NewtonReport, NewtonSettings};
 const BIAS: f64 = 1e-2;
 
 /// Solves `net`, leaving symmetric states toward `toward` when given.
-pub fn solve(
+pub fn solve_toward(
     net: &mut Network,
     settings: &NewtonSettings,
     toward: Option<[f64; 3]>,
