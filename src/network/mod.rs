@@ -28,6 +28,7 @@ pub mod scratch;
 pub mod stability;
 pub mod stage;
 pub mod states;
+pub mod support;
 
 pub use buckle::solve as solve_toward;
 pub use build::build;
