@@ -6,7 +6,6 @@ use std::sync::Arc;
 use clap::Args;
 
 use super::gridshell::{parse_section, SectionRatio};
-use super::network::JointArg;
 use super::output::{bad, check_outputs_creating, diagnostic, given, vtk_bytes};
 use super::output::{EXIT_NOT_CONVERGED, EXIT_OK};
 use super::progress::{self, show_progress};
@@ -47,8 +46,8 @@ pub struct FitArgs {
     /// Equal edges per segment between neighbouring crossings.
     #[arg(long, default_value_t = super::DEFAULT_SUBDIVIDE)]
     pub subdivide: usize,
-    #[arg(long, value_enum, default_value_t = JointArg::Ball)]
-    pub joint: JointArg,
+    #[arg(long, value_enum, default_value_t = JointChoice::Ball)]
+    pub joint: JointChoice,
     /// Rod cross-section in metres: circle:r, ellipse:a,b or rectangle:w,h [default: a circle
     /// of radius a/50].
     #[arg(long, value_parser = parse_section)]
@@ -127,12 +126,7 @@ fn spec_of(a: &FitArgs) -> Result<FitSpec, String> {
         },
         min_angle_deg: a.min_angle,
         subdivide: a.subdivide,
-        joint: match a.joint {
-            JointArg::Ball => JointChoice::Ball,
-            JointArg::Hinge => JointChoice::Hinge,
-            JointArg::Rigid => JointChoice::Rigid,
-            JointArg::Elastic => JointChoice::Elastic,
-        },
+        joint: a.joint,
         section,
         young_modulus: a.young_modulus,
         poisson_ratio: a.poisson_ratio,

@@ -5,7 +5,6 @@ use std::path::{Path, PathBuf};
 
 use clap::Args;
 
-use super::network::JointArg;
 use super::output::{atomic_write, bad, check_outputs_creating, diagnostic, given, vtk_bytes};
 use super::output::{EXIT_NOT_CONVERGED, EXIT_OK};
 use super::progress::{self, show_progress};
@@ -48,8 +47,8 @@ pub struct HemisphereArgs {
     #[arg(long, default_value_t = DEFAULT_SUBDIVIDE)]
     pub subdivide: usize,
     /// Joint at every crossing.
-    #[arg(long, value_enum, default_value_t = JointArg::Ball)]
-    pub joint: JointArg,
+    #[arg(long, value_enum, default_value_t = JointChoice::Ball)]
+    pub joint: JointChoice,
     /// Rod cross-section, dimensions in units of R: circle:r, ellipse:a,b or rectangle:w,h
     /// (the first dimension lies tangent to the shell).
     #[arg(long, default_value = "circle:0.005", value_parser = parse_section)]
@@ -232,12 +231,7 @@ pub fn hemisphere_spec(a: &HemisphereArgs) -> Result<HemisphereSpec, String> {
         PathArg::CapNets => FormPath::CapNets,
         PathArg::Straight => FormPath::Straight,
     };
-    spec.joint = match a.joint {
-        JointArg::Ball => JointChoice::Ball,
-        JointArg::Hinge => JointChoice::Hinge,
-        JointArg::Rigid => JointChoice::Rigid,
-        JointArg::Elastic => JointChoice::Elastic,
-    };
+    spec.joint = a.joint;
     spec.section = a.section.scaled(a.radius);
     spec.young_modulus = a.young_modulus;
     spec.poisson_ratio = a.poisson_ratio;
