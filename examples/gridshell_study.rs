@@ -12,12 +12,7 @@ use rodnet::gridshell::job::run;
 use rodnet::scene::types::Section;
 
 fn joint(name: &str) -> JointChoice {
-    match name {
-        "ball" => JointChoice::Ball,
-        "hinge" => JointChoice::Hinge,
-        "rigid" => JointChoice::Rigid,
-        other => panic!("unknown joint {other}"),
-    }
+    JointChoice::from_name(name).unwrap_or_else(|| panic!("unknown joint {name}"))
 }
 
 const HEADER: &str = "| n | K | joint | r/R | cap | unknowns | conv. | stable | max rad. | rms rad. | mean rad. | apex | lowest | max net | rms net | steps (sub, retried) | Newton its | gen. s | form s |\n|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|";

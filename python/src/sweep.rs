@@ -268,17 +268,11 @@ pub fn fit(
             ))
         }
     };
-    let joint = match joint {
-        "ball" => JointChoice::Ball,
-        "hinge" => JointChoice::Hinge,
-        "rigid" => JointChoice::Rigid,
-        "elastic" => JointChoice::Elastic,
-        other => {
-            return Err(option(
-                "joint",
-                format!("must be ball, hinge, rigid or elastic, got {other:?}"),
-            ))
-        }
+    let Some(joint) = JointChoice::from_name(joint) else {
+        return Err(option(
+            "joint",
+            format!("must be ball, hinge, rigid or elastic, got {joint:?}"),
+        ));
     };
     let spec = fp::FitSpec {
         spacing,

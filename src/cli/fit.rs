@@ -5,8 +5,6 @@ use std::sync::Arc;
 
 use clap::Args;
 
-use super::gridshell::joint_choice;
-use super::network::JointArg;
 use super::output::{bad, check_outputs_creating, diagnostic, given};
 use super::output::{GridshellFormats, ResultOutputs};
 use super::output::{EXIT_NOT_CONVERGED, EXIT_OK};
@@ -18,6 +16,7 @@ use crate::gridshell::footprint::to_ron;
 use crate::gridshell::options::{parse_section, SectionRatio};
 use crate::io::formats::Solved;
 use crate::io::{atomic, footprint as fab};
+use crate::scene::types::JointChoice;
 use crate::scene::types::{Section, Solver};
 use crate::surface::Surface;
 
@@ -50,8 +49,8 @@ pub struct FitArgs {
     /// Equal edges per segment between neighbouring crossings.
     #[arg(long, default_value_t = super::DEFAULT_SUBDIVIDE)]
     pub subdivide: usize,
-    #[arg(long, value_enum, default_value_t = JointArg::Ball)]
-    pub joint: JointArg,
+    #[arg(long, value_enum, default_value_t = JointChoice::Ball)]
+    pub joint: JointChoice,
     /// Rod cross-section in metres: circle:r, ellipse:a,b or rectangle:w,h [default: a circle
     /// of radius a/50].
     #[arg(long, value_parser = parse_section)]
@@ -125,7 +124,7 @@ fn spec_of(a: &FitArgs) -> Result<FitSpec, String> {
         },
         min_angle_deg: a.min_angle,
         subdivide: a.subdivide,
-        joint: joint_choice(a.joint),
+        joint: a.joint,
         section,
         young_modulus: a.young_modulus,
         poisson_ratio: a.poisson_ratio,

@@ -5,7 +5,6 @@ use std::path::{Path, PathBuf};
 
 use clap::Args;
 
-use super::network::JointArg;
 use super::output::{atomic_write, bad, check_outputs_creating, diagnostic, given};
 use super::output::{GridshellFormats, ResultOutputs};
 use super::output::{EXIT_NOT_CONVERGED, EXIT_OK};
@@ -40,8 +39,8 @@ pub struct HemisphereArgs {
     #[arg(long, default_value_t = DEFAULT_SUBDIVIDE)]
     pub subdivide: usize,
     /// Joint at every crossing.
-    #[arg(long, value_enum, default_value_t = JointArg::Ball)]
-    pub joint: JointArg,
+    #[arg(long, value_enum, default_value_t = JointChoice::Ball)]
+    pub joint: JointChoice,
     /// Rod cross-section, dimensions in units of R: circle:r, ellipse:a,b or rectangle:w,h
     /// (the first dimension lies tangent to the shell).
     #[arg(long, default_value = "circle:0.005", value_parser = parse_section)]
@@ -99,7 +98,7 @@ impl HemisphereArgs {
             radius: self.radius,
             rods: self.rods,
             subdivide: self.subdivide,
-            joint: joint_choice(self.joint),
+            joint: self.joint,
             section: self.section,
             young_modulus: self.young_modulus,
             poisson_ratio: self.poisson_ratio,
@@ -112,16 +111,6 @@ impl HemisphereArgs {
             },
             modes: self.modes.map(|k| k as usize),
         }
-    }
-}
-
-/// The generator's joint of a `--joint`.
-pub(super) fn joint_choice(j: JointArg) -> JointChoice {
-    match j {
-        JointArg::Ball => JointChoice::Ball,
-        JointArg::Hinge => JointChoice::Hinge,
-        JointArg::Rigid => JointChoice::Rigid,
-        JointArg::Elastic => JointChoice::Elastic,
     }
 }
 

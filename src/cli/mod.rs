@@ -24,7 +24,7 @@ pub use buckle::BuckleArgs;
 pub use gridshell::{hemisphere_spec, HemisphereArgs, PathArg};
 pub use indent::IndentArgs;
 pub use limits::{parse_bytes, LimitArgs};
-pub use network::{JointArg, NetworkArgs};
+pub use network::NetworkArgs;
 pub use output::{EXIT_BAD_INPUT, EXIT_NOT_CONVERGED, EXIT_OK};
 pub use plot::PlotArgs;
 pub use progress::show_progress;

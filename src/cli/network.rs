@@ -3,20 +3,11 @@
 
 use std::path::PathBuf;
 
-use clap::{Args, ValueEnum};
+use clap::Args;
 
 use crate::scene::obj_import::{self, Generated, NetworkOptions};
-use crate::scene::types::{JointKind, Scene, Solver};
+use crate::scene::types::{JointChoice, Scene, Solver};
 use crate::scene::{self, FieldError};
-
-#[derive(Debug, Clone, Copy, PartialEq, Eq, ValueEnum)]
-pub enum JointArg {
-    Rigid,
-    Hinge,
-    Ball,
-    /// The VPS joint of Baek et al. 2018 scaled to the rods (docs/gridshell.md).
-    Elastic,
-}
 
 /// Options of `solve` that build the scene from an OBJ network instead of a scene file.
 #[derive(Args, Debug, Clone, Default)]
@@ -66,7 +57,7 @@ pub struct NetworkArgs {
     pub density: Option<f64>,
     /// Kind of the joints at points shared by several polylines [default: rigid].
     #[arg(long, value_enum, requires = "network")]
-    pub joint: Option<JointArg>,
+    pub joint: Option<JointChoice>,
     /// Equal edges per polyline segment [default: 1].
     #[arg(long, value_name = "K", requires = "network")]
     pub subdivide: Option<usize>,
@@ -275,14 +266,10 @@ pub fn load(path: &std::path::Path, a: &NetworkArgs) -> Result<NetworkScene, Str
         shear_modulus: a.shear_modulus,
         density: a.density.unwrap_or(0.0),
         radius,
-        joint: match a.joint.unwrap_or(JointArg::Rigid) {
-            JointArg::Rigid => JointKind::Rigid,
-            JointArg::Hinge => JointKind::Hinge,
-            JointArg::Ball => JointKind::Ball,
-            JointArg::Elastic => JointKind::from_elastic(
-                crate::network::joint::elastic::vps_joint(young_modulus, radius),
-            ),
-        },
+        joint: a
+            .joint
+            .unwrap_or(JointChoice::Rigid)
+            .kind(young_modulus, radius),
         subdivide: a.subdivide.unwrap_or(1),
         pin_below: a.pin_below,
         clamp_below: a.clamp_below,

@@ -4,14 +4,13 @@ use std::path::{Path, PathBuf};
 
 use clap::{Args, Subcommand, ValueEnum};
 
-use super::gridshell::joint_choice;
-use super::network::JointArg;
 use super::output::{bad, check_outputs, given, EXIT_NOT_CONVERGED, EXIT_OK};
 use super::progress::{self, show_progress};
 use crate::gridshell::footprint::DEFAULT_SECTION_RATIO;
 use crate::gridshell::formfind::DEFAULT_START_CAP;
 use crate::gridshell::options::{HemisphereOptions, SectionRatio, DEFAULT_RODS};
 use crate::io::atomic;
+use crate::scene::types::JointChoice;
 use crate::scene::{self, types::Section};
 use crate::study::convergence::{analyse, plan, Problem};
 use crate::study::{plot, report};
@@ -66,7 +65,7 @@ pub struct ConvergenceArgs {
     pub subdivide: Option<usize>,
     /// Gridshell: joint at every crossing [default: ball].
     #[arg(long, value_enum, conflicts_with = "scene", requires = "gridshell")]
-    pub joint: Option<JointArg>,
+    pub joint: Option<JointChoice>,
     /// Gridshell: radius of the starting cap over R, as for `rodnet gridshell hemisphere`
     /// [default: 5].
     #[arg(long, conflicts_with = "scene", requires = "gridshell")]
@@ -78,7 +77,7 @@ fn hemisphere_problem(a: &ConvergenceArgs) -> Result<Problem, String> {
     let h = HemisphereOptions {
         rods: a.rods.unwrap_or(DEFAULT_RODS),
         subdivide: a.subdivide.unwrap_or(DEFAULT_GRIDSHELL_SUBDIVIDE),
-        joint: joint_choice(a.joint.unwrap_or(JointArg::Ball)),
+        joint: a.joint.unwrap_or(JointChoice::Ball),
         section: SectionRatio(Section::Circle {
             radius: DEFAULT_SECTION_RATIO,
         }),

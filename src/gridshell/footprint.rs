@@ -10,43 +10,11 @@
 use std::collections::BTreeMap;
 
 use crate::gridshell::chebyshev::{mirror_uv, HemisphereNet};
+pub use crate::scene::types::JointChoice;
 use crate::scene::types::{
-    Joint, JointKind, Material, Rod, Scene, Section, Solver, Support, SupportKind, Target,
+    Joint, Material, Rod, Scene, Section, Solver, Support, SupportKind, Target,
 };
 use crate::scene::validate::MAX_NODES;
-
-/// Joint kinds the generator offers (Elastic joints are not in the solver yet).
-#[derive(Debug, Clone, Copy, PartialEq, Eq)]
-pub enum JointChoice {
-    Ball,
-    Hinge,
-    Rigid,
-    /// The VPS joint of Baek et al. scaled to the rods (`joint::elastic::vps_joint`).
-    Elastic,
-}
-
-impl JointChoice {
-    /// Joint kind for rods of modulus `young` and outer radius `radius`.
-    pub fn kind(self, young: f64, radius: f64) -> JointKind {
-        match self {
-            JointChoice::Ball => JointKind::Ball,
-            JointChoice::Hinge => JointKind::Hinge,
-            JointChoice::Rigid => JointKind::Rigid,
-            JointChoice::Elastic => {
-                JointKind::from_elastic(crate::network::joint::elastic::vps_joint(young, radius))
-            }
-        }
-    }
-
-    pub fn name(self) -> &'static str {
-        match self {
-            JointChoice::Ball => "ball",
-            JointChoice::Hinge => "hinge",
-            JointChoice::Rigid => "rigid",
-            JointChoice::Elastic => "elastic",
-        }
-    }
-}
 
 /// Everything that defines one hemispherical gridshell problem.
 #[derive(Debug, Clone, PartialEq)]

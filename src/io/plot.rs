@@ -6,6 +6,8 @@
 
 use plotters::prelude::*;
 
+use crate::network::support::Marker;
+
 pub use crate::io::plot_data::{read, Picture, PlotRod, Quantity};
 pub use crate::io::text::{draw_text, text_width};
 
@@ -158,7 +160,7 @@ pub fn render(p: &Picture, width: u32, height: u32, title: &str) -> Result<Vec<u
                     .map_err(err)?;
             }
             for s in &p.supports {
-                draw_support(&root, view.px(&s.at), &s.kind).map_err(err)?;
+                draw_support(&root, view.px(&s.at), s.kind.marker()).map_err(err)?;
             }
             for l in &p.loads {
                 draw_load(&root, &view, l, fmax).map_err(err)?;
@@ -216,19 +218,18 @@ type Area<'a> = DrawingArea<BitMapBackend<'a>, plotters::coord::Shift>;
 type DrawResult<'a> =
     Result<(), DrawingAreaErrorKind<<BitMapBackend<'a> as DrawingBackend>::ErrorType>>;
 
-/// A clamp as a square, a pin as a triangle under the node, a roller as an open one, a spring
-/// as a ring.
-fn draw_support<'a>(root: &Area<'a>, (x, y): (i32, i32), kind: &str) -> DrawResult<'a> {
+/// A support's marker at its node (the triangles under it).
+fn draw_support<'a>(root: &Area<'a>, (x, y): (i32, i32), marker: Marker) -> DrawResult<'a> {
     let c = rgb(SUPPORT);
     let tri = vec![(x, y), (x - 7, y + 12), (x + 7, y + 12), (x, y)];
-    match kind {
-        "clamp" => root.draw(&Rectangle::new(
+    match marker {
+        Marker::Square => root.draw(&Rectangle::new(
             [(x - 6, y - 6), (x + 6, y + 6)],
             c.filled(),
         )),
-        "roller" => root.draw(&PathElement::new(tri, c.stroke_width(2))),
-        "spring" => root.draw(&Circle::new((x, y), 6, c.stroke_width(2))),
-        _ => root.draw(&Polygon::new(tri, c.filled())),
+        Marker::OpenTriangle => root.draw(&PathElement::new(tri, c.stroke_width(2))),
+        Marker::Ring => root.draw(&Circle::new((x, y), 6, c.stroke_width(2))),
+        Marker::Triangle => root.draw(&Polygon::new(tri, c.filled())),
     }
 }
 
@@ -319,17 +320,13 @@ fn key(p: &Picture) -> String {
             p.deflection_scale
         ));
     }
-    let mut kinds: Vec<&str> = p.supports.iter().map(|s| s.kind.as_str()).collect();
-    kinds.sort_unstable();
-    kinds.dedup();
+    // One entry per kind, in the order of their names.
+    let mut kinds: Vec<_> = p.supports.iter().map(|s| &s.kind).collect();
+    kinds.sort_unstable_by_key(|k| k.name());
+    kinds.dedup_by_key(|k| k.name());
     let marks: Vec<String> = kinds
         .iter()
-        .map(|k| match *k {
-            "clamp" => "■ clamp".to_string(),
-            "roller" => "△ roller".to_string(),
-            "spring" => "○ spring".to_string(),
-            k => format!("▲ {k}"),
-        })
+        .map(|k| format!("{} {}", k.marker().glyph(), k.name()))
         .collect();
     if !marks.is_empty() {
         parts.push(marks.join("  "));

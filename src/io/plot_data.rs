@@ -4,6 +4,7 @@
 //! docs/cli.md.
 
 use crate::io::results::{Results, RodJson};
+use crate::network::support::{Marker, SupportTag};
 
 /// The quantity that colours the rods (`--color`).
 #[derive(Debug, Clone, Copy, PartialEq, Eq)]
@@ -56,8 +57,41 @@ pub struct PlotRod {
 #[derive(Debug, Clone, PartialEq)]
 pub struct Support {
     pub at: [f64; 3],
-    /// "pin", "clamp", "roller", "spring" (or "support" when the results do not say).
-    pub kind: String,
+    pub kind: SupportKindRead,
+}
+
+/// A support kind as a results JSON gives it.
+#[derive(Debug, Clone, PartialEq)]
+pub enum SupportKindRead {
+    Known(SupportTag),
+    /// A name this build does not know, kept for the legend ("support" when the results do not
+    /// say); drawn as a pin.
+    Other(String),
+}
+
+impl SupportKindRead {
+    fn of(name: Option<&str>) -> SupportKindRead {
+        let name = name.unwrap_or("support");
+        SupportTag::from_name(name).map_or_else(
+            || SupportKindRead::Other(name.into()),
+            SupportKindRead::Known,
+        )
+    }
+
+    /// What the legend calls it.
+    pub fn name(&self) -> &str {
+        match self {
+            SupportKindRead::Known(t) => t.name(),
+            SupportKindRead::Other(name) => name,
+        }
+    }
+
+    pub fn marker(&self) -> Marker {
+        match self {
+            SupportKindRead::Known(t) => t.marker(),
+            SupportKindRead::Other(_) => Marker::Triangle,
+        }
+    }
 }
 
 /// A point load at its drawn position: force N, moment N·m.
@@ -102,7 +136,7 @@ pub fn read(
         .filter_map(|(j, s)| s.node.map(|k| (j, s, k)))
         .map(|(j, s, k)| {
             let at = node_at(&rods, &s.rod, k).map_err(|e| format!("{file}: reactions[{j}]{e}"))?;
-            let kind = s.kind.clone().unwrap_or_else(|| "support".into());
+            let kind = SupportKindRead::of(s.kind.as_deref());
             Ok(Support { at, kind })
         })
         .collect::<Result<Vec<_>, String>>()?;

@@ -508,7 +508,7 @@ impl Results {
                 rod: s.rod.clone(),
                 vertex: s.vertex,
                 node: Some(s.node),
-                kind: Some(s.kind.into()),
+                kind: Some(s.kind.name().into()),
                 force: s.reaction.force,
                 moment: s.reaction.moment,
             })

@@ -27,11 +27,22 @@ impl RodInfo {
     }
 }
 
+/// A support's kind without its parameters. What each kind is called in the results, how its
+/// reaction is reported and how a picture marks it are in `network/support/`, one file per kind.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, Hash)]
+pub enum SupportTag {
+    Pin,
+    Clamp,
+    Roller,
+    Spring,
+}
+
 #[derive(Debug, Clone)]
 pub struct SupportInfo {
     pub rod: String,
     pub vertex: usize,
     pub node: usize,
+    pub kind: SupportTag,
     /// The vertex frame a clamp fixes (its reaction moment).
     pub frame: Option<usize>,
     /// An elastic support: its index in `Terms::springs` (its reaction is its spring force).

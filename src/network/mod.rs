@@ -27,6 +27,7 @@ pub mod scratch;
 pub mod stability;
 pub mod stage;
 pub mod states;
+pub mod support;
 pub mod symmetry_break;
 
 pub use build::build;

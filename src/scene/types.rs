@@ -151,6 +151,41 @@ pub struct Joint {
     pub normal: Option<[f64; 3]>,
 }
 
+/// A joint kind without parameters, as the CLI (`--joint`), the generated scenes (hemisphere,
+/// fitted and OBJ networks) and Python name it; `JointChoice::kind` (`network/joint/`) makes the
+/// scene's [`JointKind`] of it.
+#[derive(Debug, Clone, Copy, PartialEq, Eq, clap::ValueEnum)]
+pub enum JointChoice {
+    Rigid,
+    Hinge,
+    Ball,
+    /// The VPS joint of Baek et al. 2018 scaled to the rods (docs/gridshell.md).
+    Elastic,
+}
+
+impl JointChoice {
+    pub const ALL: [JointChoice; 4] = [
+        JointChoice::Rigid,
+        JointChoice::Hinge,
+        JointChoice::Ball,
+        JointChoice::Elastic,
+    ];
+
+    /// Its name in `--joint`, sweep files and Python.
+    pub fn name(self) -> &'static str {
+        match self {
+            JointChoice::Rigid => "rigid",
+            JointChoice::Hinge => "hinge",
+            JointChoice::Ball => "ball",
+            JointChoice::Elastic => "elastic",
+        }
+    }
+
+    pub fn from_name(name: &str) -> Option<JointChoice> {
+        JointChoice::ALL.into_iter().find(|j| j.name() == name)
+    }
+}
+
 #[derive(Debug, Clone, PartialEq, Serialize, Deserialize)]
 #[serde(deny_unknown_fields)]
 pub enum JointKind {

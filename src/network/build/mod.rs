@@ -148,7 +148,7 @@ fn initially_fixed(layout: &DofLayout, table: &crate::network::joint::PortTable)
 /// The slanted rollers of nodes that nothing else holds (a Pin or Clamp there holds the node
 /// already), with their planes' normals made orthonormal, and the spring that holds each.
 fn slanted_rollers(
-    slanted: &[supports::Slanted],
+    slanted: &[crate::network::support::Slanted],
     layout: &DofLayout,
     fixed: &[bool],
     terms: &mut crate::energy::registry::Terms,

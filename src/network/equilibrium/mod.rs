@@ -16,9 +16,10 @@ use serde::{Deserialize, Serialize};
 use crate::network::assembly::Assembly;
 use crate::network::model::{EnergyParts, KindEnergy};
 use crate::network::rest;
+use crate::network::support::{Reported, SupportTag};
 use crate::network::Network;
 use crate::rod::frames::canonical_angles;
-use crate::scene::types::{Load, SupportKind};
+use crate::scene::types::Load;
 use crate::scene::Scene;
 use crate::solver::NewtonReport;
 
@@ -82,8 +83,8 @@ pub struct SupportReaction {
     pub vertex: usize,
     /// Index of the vertex's node in the rod's nodes (vertex × subdivide).
     pub node: usize,
-    /// "pin", "clamp", "roller" or "spring".
-    pub kind: &'static str,
+    /// Its name in the results: [`SupportTag::name`].
+    pub kind: SupportTag,
     pub reaction: Reaction,
 }
 
@@ -199,16 +200,15 @@ impl Equilibrium {
         let reactions = net
             .supports
             .iter()
-            .zip(support_kinds(net, scene))
-            .map(|(s, kind)| {
+            .map(|s| {
                 let at = |reaction| SupportReaction {
                     rod: s.rod.clone(),
                     vertex: s.vertex,
                     node: node_index(net, &s.rod, s.vertex),
-                    kind,
+                    kind: s.kind,
                     reaction,
                 };
-                if s.spring.is_some() || s.rotational.is_some() {
+                if s.kind.reported() == Reported::Elastic {
                     // A spring's reaction is its own force (moment); the node and frame are
                     // free, so it takes no share of a fixed node's gradient.
                     let force = s.spring.map_or([0.0; 3], |k| {
@@ -260,19 +260,6 @@ impl Equilibrium {
             utilization,
         }
     }
-}
-
-/// The kind of each support of `net`, which holds one support per scene support, in order.
-fn support_kinds(net: &Network, scene: &Scene) -> Vec<&'static str> {
-    (0..net.supports.len())
-        .map(|i| match scene.supports.get(i).map(|s| &s.kind) {
-            Some(SupportKind::Pin) => "pin",
-            Some(SupportKind::Clamp) => "clamp",
-            Some(SupportKind::Roller { .. }) => "roller",
-            Some(SupportKind::Spring { .. }) => "spring",
-            None => "support",
-        })
-        .collect()
 }
 
 /// Index in the rod's nodes of input vertex `vertex` of the rod named `rod`.

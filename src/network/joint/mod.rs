@@ -17,6 +17,19 @@ pub mod rigid;
 use std::collections::HashMap;
 
 use crate::math::vec::Frame;
+use crate::scene::types::{JointChoice, JointKind};
+
+impl JointChoice {
+    /// Joint kind for rods of modulus `young` and outer radius `radius`.
+    pub fn kind(self, young: f64, radius: f64) -> JointKind {
+        match self {
+            JointChoice::Ball => JointKind::Ball,
+            JointChoice::Hinge => JointKind::Hinge,
+            JointChoice::Rigid => JointKind::Rigid,
+            JointChoice::Elastic => JointKind::from_elastic(elastic::vps_joint(young, radius)),
+        }
+    }
+}
 
 /// A rod's attachment to a vertex frame (before variables are laid out).
 #[derive(Debug, Clone)]
