@@ -63,3 +63,158 @@ fn a_sweep_refuses_the_vtk_output_option_by_name() {
     );
     assert!(!d.join("out").exists(), "a refused sweep solved something");
 }
+
+/// A scene's `Mesh` target: a relative path that leads out of the scene's folder (by `..` or a
+/// symbolic link) is refused at `target.path` before anything is read, and a mesh's bad record
+/// is named by its line without quoting the file's text (a scene from elsewhere must not read
+/// or show the user's other files). A mesh beside the scene, or named by an absolute path, is
+/// read as before.
+#[test]
+fn a_mesh_target_stays_in_the_scene_folder_and_is_never_quoted() {
+    let d = tmpdir("rel-in", "mesh");
+    let scenes = d.join("scenes");
+    std::fs::create_dir_all(&scenes).unwrap();
+    std::fs::write(d.join("secret.txt"), "f hunter2secret\n").unwrap();
+    std::fs::write(scenes.join("inside.txt"), "v 0 0 0\nf hunter2secret\n").unwrap();
+    #[cfg(unix)]
+    std::os::unix::fs::symlink(d.join("secret.txt"), scenes.join("link.obj")).unwrap();
+    let scene = |path: &str| {
+        let text = std::fs::read_to_string(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/networks/cantilever.ron"
+        ))
+        .unwrap()
+        .replace(
+            "solver: Solver(",
+            &format!("target: Some(Mesh(path: {path:?})),\n    solver: Solver("),
+        );
+        let f = scenes.join("s.ron");
+        std::fs::write(&f, text).unwrap();
+        rodnet()
+            .args(["solve", "--quiet", "--json"])
+            .arg(d.join("out.json"))
+            .arg(&f)
+            .output()
+            .unwrap()
+    };
+    let mut cases = vec![("../secret.txt", true)];
+    if cfg!(unix) {
+        cases.push(("link.obj", true));
+    }
+    cases.push(("inside.txt", false));
+    for (path, outside) in cases {
+        let o = scene(path);
+        let t = text(&o);
+        assert_eq!(o.status.code(), Some(2), "{path}: {t}");
+        assert!(!t.contains("hunter2"), "{path}: {t}");
+        assert!(!d.join("out.json").exists(), "{path}");
+        if outside {
+            assert!(
+                t.contains("target.path") && t.contains("outside the scene file's folder"),
+                "{path}: {t}"
+            );
+        } else {
+            assert!(
+                t.contains("inside.txt:2:1") && t.contains("face corner"),
+                "{t}"
+            );
+        }
+    }
+    // Absolute: read (and its bad record named, not quoted).
+    let abs = d.join("secret.txt").display().to_string();
+    let t = text(&scene(&abs));
+    assert!(
+        t.contains("secret.txt:1:1") && !t.contains("hunter2"),
+        "{t}"
+    );
+}
+
+/// A sweep's `output` is a folder next to the sweep file: a relative one that climbs out of it
+/// is refused (exit 2, at `output`) before anything is solved or created. `sweep merge` writes
+/// its table only into the manifest's own folder or one holding the manifest's points, and only
+/// from point files whose inputs (fingerprints) are the manifest's: a hand-edited manifest
+/// cannot make it write elsewhere, and points solved from an earlier version of the base scene
+/// are listed missing, not merged.
+#[test]
+fn sweep_outputs_stay_home_and_merge_takes_only_current_points() {
+    let d = tmpdir("rel-in", "sweep-out");
+    let beam = std::fs::read_to_string(concat!(
+        env!("CARGO_MANIFEST_DIR"),
+        "/networks/cantilever.ron"
+    ))
+    .unwrap();
+    let home = d.join("home");
+    std::fs::create_dir_all(&home).unwrap();
+    std::fs::write(home.join("beam.ron"), &beam).unwrap();
+    let sweep = |out: &str| {
+        format!(
+            "Sweep(scene: \"beam.ron\", grid: {{\"materials.steel.young_modulus\": [1e8, 2e8]}}, \
+             output: {out:?})"
+        )
+    };
+    std::fs::write(home.join("away.ron"), sweep("../elsewhere")).unwrap();
+    let o = rodnet()
+        .arg("sweep")
+        .arg(home.join("away.ron"))
+        .output()
+        .unwrap();
+    let t = text(&o);
+    assert_eq!(o.status.code(), Some(2), "{t}");
+    assert!(
+        t.contains("output") && t.contains("outside the sweep file's folder"),
+        "{t}"
+    );
+    assert!(!d.join("elsewhere").exists());
+
+    std::fs::write(home.join("s.ron"), sweep("out")).unwrap();
+    let o = rodnet()
+        .arg("sweep")
+        .arg(home.join("s.ron"))
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+    let merge =
+        |dir: &std::path::Path| rodnet().args(["sweep", "merge"]).arg(dir).output().unwrap();
+
+    // The manifest's points, solved from another base scene: stale, so missing.
+    std::fs::write(
+        home.join("beam.ron"),
+        beam.replace("-1.5707963267948966", "-3.0"),
+    )
+    .unwrap();
+    let array = home.join("array");
+    let o = rodnet()
+        .arg("sweep")
+        .arg(home.join("s.ron"))
+        .args(["--emit", "slurm"])
+        .arg(&array)
+        .output()
+        .unwrap();
+    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+    let o = merge(&array);
+    let t = text(&o);
+    assert_ne!(o.status.code(), Some(0), "{t}");
+    assert!(t.contains("2 point(s) missing"), "{t}");
+
+    // A manifest edited to name another folder: nothing written there.
+    let victim = d.join("victim");
+    std::fs::create_dir_all(&victim).unwrap();
+    let manifest = home.join("out/manifest.json");
+    let text_m = std::fs::read_to_string(&manifest).unwrap();
+    let mut m: serde_json::Value = serde_json::from_str(&text_m).unwrap();
+    m["output"] = serde_json::json!(victim);
+    let edited = d.join("edited");
+    std::fs::create_dir_all(&edited).unwrap();
+    std::fs::write(edited.join("manifest.json"), m.to_string()).unwrap();
+    let o = merge(&edited);
+    assert_eq!(o.status.code(), Some(2), "{}", text(&o));
+    assert_eq!(std::fs::read_dir(&victim).unwrap().count(), 0);
+    // And point names that reach other folders are refused.
+    m["output"] = serde_json::json!(home.join("out"));
+    m["points"][0]["name"] = serde_json::json!("../../victim/x");
+    std::fs::write(edited.join("manifest.json"), m.to_string()).unwrap();
+    let o = merge(&edited);
+    let t = text(&o);
+    assert_eq!(o.status.code(), Some(2), "{t}");
+    assert!(t.contains("not a plain file name"), "{t}");
+}

@@ -105,8 +105,10 @@ fn write(
         files.push((p, curve_csv(points).into_bytes()));
     }
     if let Some(p) = &a.plot {
+        let stable: Vec<bool> = out.curve_stability.iter().map(|s| s.stable).collect();
         let png = curve_plot::curve(
             points,
+            &stable,
             limits,
             ("depth (m)", "force (N)"),
             "Indentation: force against depth",

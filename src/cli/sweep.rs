@@ -167,7 +167,7 @@ fn merge(dir: &std::path::Path) -> i32 {
             }
             let list: Vec<String> = missing.iter().map(|i| i.to_string()).collect();
             eprintln!(
-                "{} point(s) missing (no results file yet): {}",
+                "{} point(s) missing (no results file yet, or one solved from other inputs): {}",
                 missing.len(),
                 list.join(" ")
             );

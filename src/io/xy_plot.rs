@@ -187,7 +187,8 @@ pub fn chart(
                 }
             }
         }
-        for (k, s) in series.iter().enumerate() {
+        // Unnamed series continue a named one (its later runs): one legend entry each.
+        for (k, s) in series.iter().filter(|s| !s.name.is_empty()).enumerate() {
             let col = x0 + (k % 2) as i32 * (pw as i32 / 2);
             let row = 40 + 22 * (k / 2) as i32;
             let c = RGBColor(s.colour[0], s.colour[1], s.colour[2]);

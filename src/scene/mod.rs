@@ -7,7 +7,7 @@ pub mod types;
 pub mod validate;
 
 use std::fmt;
-use std::path::Path;
+use std::path::{Path, PathBuf};
 
 pub use types::Scene;
 
@@ -135,6 +135,13 @@ fn read_target_mesh(scene: &mut Scene, file: &str, src: &str) -> Result<(), Scen
     };
     let base = Path::new(file).parent().unwrap_or(Path::new(""));
     let full = base.join(path.as_str());
+    if let Err(why) = inside_scene_folder(base, path) {
+        return Err(SceneError::from_field(
+            file,
+            src,
+            &FieldError::global("target", "path", why),
+        ));
+    }
     match crate::surface::Surface::load(&full, MAX_MESH_BYTES) {
         Ok(s) => {
             surface.0 = Some(std::sync::Arc::new(s));
@@ -155,6 +162,61 @@ fn read_target_mesh(scene: &mut Scene, file: &str, src: &str) -> Result<(), Scen
             column: e.line.map(|_| 1),
             message: format!("target mesh: {}", e.message),
         }),
+    }
+}
+
+/// A scene names files relative to its folder, and a relative path stays inside it (after
+/// symbolic links): a scene from elsewhere must not make rodnet read the user's other files.
+/// An absolute path is the scene author's explicit choice and is read as given (errors about
+/// its content name lines, never its text).
+fn inside_scene_folder(base: &Path, given: &str) -> Result<(), String> {
+    stays_inside(base, Path::new(given)).map_err(|folder| {
+        format!(
+            "\"{given}\" leads outside the scene file's folder ({}): a relative path must stay \
+             inside it; give an absolute path to read a mesh elsewhere",
+            folder.display()
+        )
+    })
+}
+
+/// Whether the relative path `given`, taken from `folder`, stays inside it: no `..` that climbs
+/// out, and, for the part that exists, no symbolic link that leads out. An absolute `given` is
+/// an explicit choice and passes. The error is the folder (canonical where it exists).
+pub fn stays_inside(folder: &Path, given: &Path) -> Result<(), PathBuf> {
+    use std::path::Component;
+    if given.is_absolute() {
+        return Ok(());
+    }
+    let folder = if folder.as_os_str().is_empty() {
+        Path::new(".")
+    } else {
+        folder
+    };
+    let canonical = folder
+        .canonicalize()
+        .unwrap_or_else(|_| folder.to_path_buf());
+    let mut depth = 0usize;
+    for c in given.components() {
+        match c {
+            Component::ParentDir if depth == 0 => return Err(canonical),
+            Component::ParentDir => depth -= 1,
+            Component::Normal(_) => depth += 1,
+            _ => {}
+        }
+    }
+    // The longest existing prefix, with its links resolved, must still lie inside.
+    let mut probe = folder.join(given);
+    loop {
+        if let Ok(real) = probe.canonicalize() {
+            return if real.starts_with(&canonical) {
+                Ok(())
+            } else {
+                Err(canonical)
+            };
+        }
+        if !probe.pop() {
+            return Ok(());
+        }
     }
 }
 

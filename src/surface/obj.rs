@@ -40,8 +40,8 @@ pub fn parse(text: &str) -> Result<RawMesh, TextError> {
                 for (c, w) in p.iter_mut().zip(&xs) {
                     *c = match w.parse::<f64>() {
                         Ok(x) if x.is_finite() => x,
-                        Ok(_) => return fail(format!("vertex coordinate `{w}` is not finite")),
-                        Err(_) => return fail(format!("vertex coordinate `{w}` is not a number")),
+                        Ok(_) => return fail("a vertex coordinate is not finite".into()),
+                        Err(_) => return fail("a vertex coordinate is not a number".into()),
                     };
                 }
                 m.vertices.push(p);
@@ -80,7 +80,7 @@ fn index(word: &str, read: usize) -> Result<u32, String> {
     let head = word.split('/').next().unwrap_or("");
     let i: i64 = head
         .parse()
-        .map_err(|_| format!("face corner `{word}` is not a vertex index"))?;
+        .map_err(|_| "a face corner is not a vertex index".to_string())?;
     let zero_based = if i > 0 {
         i - 1
     } else if i < 0 {

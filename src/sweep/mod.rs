@@ -170,7 +170,23 @@ impl Sweep {
                 )),
             };
         let output = match (f.output, default_output) {
-            (Some(o), _) => base_dir.join(o),
+            (Some(o), _) => {
+                // A sweep file from elsewhere must not write among the user's other files: its
+                // relative `output` stays in its folder (`--output` or an absolute path choose
+                // any place explicitly).
+                if let Err(folder) = scene::stays_inside(base_dir, &o) {
+                    return Err(err(
+                        Some("output"),
+                        format!(
+                            "`output`: {:?} leads outside the sweep file's folder ({}); give \
+                             an absolute path or --output to write elsewhere",
+                            o.display().to_string(),
+                            folder.display()
+                        ),
+                    ));
+                }
+                base_dir.join(o)
+            }
             (None, Some(d)) => base_dir.join(d),
             (None, None) => return Err(err(None, "`output`: missing (the output folder)".into())),
         };

@@ -302,6 +302,7 @@ impl Sweep {
             "points": self.points.iter().map(|p| json!({
                 "index": p.index,
                 "name": p.name,
+                "fingerprint": self.fingerprint(p.index),
                 "parameters": p.parameters.iter().map(|(k, v)| (k.clone(), v.to_json()))
                     .collect::<serde_json::Map<_, _>>(),
             })).collect::<Vec<_>>(),

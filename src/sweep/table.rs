@@ -75,6 +75,10 @@ pub struct Manifest {
 pub struct ManifestPoint {
     pub index: usize,
     pub name: String,
+    /// The fingerprint of the point's inputs when the manifest was written: a point file with
+    /// another one was solved from other inputs (manifests written before it have none).
+    #[serde(default)]
+    pub fingerprint: Option<String>,
     pub parameters: serde_json::Map<String, Json>,
 }
 
@@ -83,8 +87,29 @@ impl Manifest {
     pub fn read(dir: &Path) -> Result<Manifest, String> {
         let p = dir.join(MANIFEST);
         let text = std::fs::read(&p).map_err(|e| format!("cannot read {}: {e}", p.display()))?;
-        serde_json::from_slice(&text).map_err(|e| format!("{}: {e}", p.display()))
+        let m: Manifest =
+            serde_json::from_slice(&text).map_err(|e| format!("{}: {e}", p.display()))?;
+        // Point names become file names in the output folder: a plain name, nothing that
+        // reaches another folder.
+        if let Some(bad) = m.points.iter().find(|q| !plain_file_name(&q.name)) {
+            return Err(format!(
+                "{}: point {} has the name {:?}, which is not a plain file name",
+                p.display(),
+                bad.index,
+                bad.name
+            ));
+        }
+        Ok(m)
     }
+}
+
+fn plain_file_name(name: &str) -> bool {
+    !name.is_empty()
+        && name != "."
+        && name != ".."
+        && !name
+            .chars()
+            .any(|c| c == '/' || c == '\\' || c.is_control())
 }
 
 /// One row: a point's parameters and what its file says (`None`: no file yet).
@@ -103,7 +128,12 @@ pub fn rows(m: &Manifest) -> Vec<Row> {
             parameters: p.parameters.clone(),
             record: std::fs::read(m.output.join(format!("{}.json", p.name)))
                 .ok()
-                .and_then(|t| serde_json::from_slice(&t).ok()),
+                .and_then(|t| serde_json::from_slice::<Json>(&t).ok())
+                .filter(|r| {
+                    p.fingerprint.as_deref().is_none_or(|f| {
+                        r.pointer("/sweep/fingerprint").and_then(Json::as_str) == Some(f)
+                    })
+                }),
         })
         .collect()
 }
@@ -187,6 +217,24 @@ pub fn merge(dir: &Path) -> Result<(PathBuf, Vec<usize>), String> {
         .filter(|r| r.record.is_none())
         .map(|r| r.index)
         .collect();
+    // The table goes into the output folder the manifest names; a hand-edited manifest must not
+    // make merge write elsewhere: that folder is the manifest's own or holds its points' files.
+    let same = |a: &Path, b: &Path| match (a.canonicalize(), b.canonicalize()) {
+        (Ok(a), Ok(b)) => a == b,
+        _ => false,
+    };
+    let holds_points = m
+        .points
+        .iter()
+        .any(|q| m.output.join(format!("{}.json", q.name)).is_file());
+    if !same(&m.output, dir) && !holds_points {
+        return Err(format!(
+            "{}: its output folder {} is not the manifest's folder and holds none of its \
+             points' results: not writing there",
+            dir.join(MANIFEST).display(),
+            m.output.display()
+        ));
+    }
     let p = m.output.join(TABLE);
     std::fs::create_dir_all(&m.output)
         .map_err(|e| format!("cannot create {}: {e}", m.output.display()))?;

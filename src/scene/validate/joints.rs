@@ -58,7 +58,7 @@ fn elastic(j: &Joint) -> Result<(), String> {
         if let Some(v) = v {
             if !(v.is_finite() && v >= 0.0) {
                 return Err(format!(
-                    "Elastic `{f}` must be non-negative and finite, got {v}"
+                    "Elastic `{f}` must be non-negative and finite, got {v:?}"
                 ));
             }
         }

@@ -9,7 +9,7 @@ pub(super) fn materials(s: &Scene) -> Result<(), FieldError> {
             return err(
                 "young_modulus",
                 format!(
-                    "must be positive and finite (at most {MAX_MAGNITUDE:e}), got {}",
+                    "must be positive and finite (at most {MAX_MAGNITUDE:e}), got {:?}",
                     m.young_modulus
                 ),
             );
@@ -29,14 +29,19 @@ pub(super) fn materials(s: &Scene) -> Result<(), FieldError> {
             }
             (Some(nu), None) => {
                 if !(nu.is_finite() && nu > -1.0 && nu <= 0.5) {
-                    return err("poisson_ratio", format!("must lie in (-1, 0.5], got {nu}"));
+                    return err(
+                        "poisson_ratio",
+                        format!("must lie in (-1, 0.5], got {nu:?}"),
+                    );
                 }
             }
             (None, Some(g)) => {
                 if !positive(g) {
                     return err(
                         "shear_modulus",
-                        format!("must be positive and finite (at most {MAX_MAGNITUDE:e}), got {g}"),
+                        format!(
+                            "must be positive and finite (at most {MAX_MAGNITUDE:e}), got {g:?}"
+                        ),
                     );
                 }
             }
@@ -44,14 +49,17 @@ pub(super) fn materials(s: &Scene) -> Result<(), FieldError> {
         if !(m.density.is_finite() && (0.0..=MAX_MAGNITUDE).contains(&m.density)) {
             return err(
                 "density",
-                format!("must be non-negative and finite, got {}", m.density),
+                format!(
+                    "must be non-negative and finite (at most {MAX_MAGNITUDE:e}), got {:?}",
+                    m.density
+                ),
             );
         }
         if let Some(y) = m.yield_strength {
             if !positive(y) {
                 return err(
                     "yield_strength",
-                    format!("must be positive and finite (at most {MAX_MAGNITUDE:e}), got {y}"),
+                    format!("must be positive and finite (at most {MAX_MAGNITUDE:e}), got {y:?}"),
                 );
             }
         }

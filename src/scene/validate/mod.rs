@@ -133,7 +133,7 @@ fn solver(sv: &Solver) -> Result<(), FieldError> {
         return Err(FieldError::global(
             "solver",
             "tolerance",
-            format!("must be positive, got {t:e}"),
+            format!("must be positive and finite (at most {MAX_MAGNITUDE:e}), got {t:e}"),
         ));
     }
     if let Some(d) = sv.buckle_toward {
