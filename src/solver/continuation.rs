@@ -24,14 +24,14 @@ const HISTORY: usize = 2;
 /// Residual to which intermediate continuation sub-steps are converged (or the solve's tolerance
 /// if looser): their states only start the next sub-step, and a few digits are enough for that;
 /// iterating them to round-off would spend iterations on states that are discarded. (1e-4 let
-/// the twisted Michell ring leave its plane below its critical twist: docs/design.md.)
+/// a twisted ring leave its plane below its critical twist: docs/design.md.)
 pub const INTERMEDIATE_TOLERANCE: f64 = 1e-6;
 /// An intermediate sub-step also ends once a full, unregularized Newton step is at most this
 /// large (in edge lengths and radians) and has been taken, if it was not the attempt's first
 /// (a step from a prediction shows nothing of Newton's contraction): Newton then converges
 /// quadratically, and the state is as close as the next prediction needs. Measured on the step,
 /// not on the residual, which says little of the position along a soft mode (a residual of 1e-4
-/// let the twisted Michell ring leave its plane below its critical twist: docs/design.md).
+/// let a twisted ring leave its plane below its critical twist: docs/design.md).
 const INTERMEDIATE_STEP: f64 = 1e-2;
 
 pub fn solve<P: NewtonProblem + Send>(p: &mut P, s: &NewtonSettings) -> NewtonReport {
@@ -249,8 +249,8 @@ impl Path {
     /// states: by the secant through the last of them and, on a buckling path with two, also by
     /// the parabola through both, keeping the prediction of lower energy. In t = √λ prescribed
     /// motions are quadratic, and so is a post-buckled shape once it is far from its
-    /// bifurcation: the secant alone put the hemisphere footprint's interior where supports
-    /// half as far out would have it (docs/design.md).
+    /// bifurcation: the secant alone extrapolates a quadratic motion linearly and falls short
+    /// of it, the more the longer the increment (docs/design.md).
     fn predict<P: NewtonProblem>(
         &self,
         p: &mut P,
@@ -328,8 +328,8 @@ impl Path {
                     Err(m) => return Outcome::Mechanism(m),
                     // Past a bifurcation the linear response is the symmetric saddle's; where it
                     // does not even hold over the increment, Newton from the lifted prediction
-                    // fails (3-6 iterations per attempt on the hemisphere footprint and the
-                    // square gridshell): the increment is cut before iterating.
+                    // fails, and the attempt's iterations are wasted: the increment is cut
+                    // before iterating.
                     Ok(false) if self.root_path && self.inc > MIN_INCREMENT * 1.0001 => {
                         p.restore(&saved);
                         st.report.retries += 1;

@@ -12,8 +12,8 @@ use super::step::Second;
 /// not depend on round-off (and scaled copies of a scene take the same path, tests/stiff.rs),
 /// and is not tried at all where the first curve's full step agrees with Newton's model;
 /// a repaired point need only beat its own curve's plain point (it is the same point with less
-/// stretch, and kept only where that lowers the energy: on the twisted ring of `michell.ron`
-/// the repair alone, without that comparison, cost 132 → 172–231 iterations). The accepted
+/// stretch, and kept only where that lowers the energy: accepted without that comparison,
+/// the repair can trade stretch for more bending and twist, and slows Newton). The accepted
 /// step is left in `trial` (`kept`: scratch for the best repaired point). Near convergence the
 /// energy decrease falls below round-off; a relative slack of a few ulps lets Newton finish
 /// there.
@@ -26,7 +26,7 @@ use super::step::Second;
 /// predicted decrease drowns in that noise, backtracking accepts whatever fraction of the step
 /// the noise happens to favour and Newton creeps above the round-off floor, for a number of
 /// iterations that depends on the last bits of the data; the residual is the reliable judge
-/// there (docs/stiff.md section 3, `networks/extreme/nitinol_cross.ron`).
+/// there (docs/stiff.md section 3).
 pub(super) struct Search<'a> {
     pub d: &'a [f64],
     /// The first curve's correction (None: a straight line).

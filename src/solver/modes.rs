@@ -19,10 +19,10 @@ impl Newton {
     ///
     /// A mode counts as zero only while its eigenvalue is not resolved from zero
     /// (`spectrum::zero_band`): a slender rod's softest bending modes fall below 1e-10 of the
-    /// scale (the stretch stiffness) at fine discretizations, and a clamped cantilever with
-    /// r/L = 1e-3 was called neutral from 320 edges on (and, with the gradient's share of the
-    /// band applied to modes that deform rods, still at 1280, and with the round-off floor
-    /// uncapped by the rods' physical stiffness, at 10⁴: `spectrum::mode_band`).
+    /// scale (the stretch stiffness) at fine discretizations, so a fixed threshold would call a
+    /// clamped slender rod neutral; for modes that deform rods neither the gradient's share of
+    /// the band nor a round-off floor above the rods' physical stiffness applies
+    /// (`spectrum::mode_band`).
     pub(super) fn gauge_modes_only<P: super::NewtonProblem>(&mut self, p: &mut P) -> bool {
         let scale = self.scaled_diagonal().max(f64::MIN_POSITIVE);
         let gradient = self.gradient_norm();

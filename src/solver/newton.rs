@@ -32,8 +32,8 @@ pub(super) const TRUSTED_RESIDUAL: f64 = 1e-4;
 /// line search and stops instead of assembling once more to see round-off stall the residual
 /// (and after such a step taken above the floor, it stops at the next iterate below the floor).
 /// Quadratic convergence makes the next step of the order of its square; a soft mode's
-/// correction, which the residual below the floor cannot see, is a step of its own size (the
-/// slender cantilever's last one moved its tip by 1e-9 of its length, thousands of edge lengths
+/// correction, which the residual below the floor cannot see, is a step of its own size (on a
+/// slender rod it can move the tip by 1e-9 of the rod's length, thousands of edge lengths
 /// times this).
 const NEGLIGIBLE_STEP: f64 = 1e-10;
 /// Relative residual below which the round-off floor is measured (once per `iterate`): above
@@ -82,10 +82,9 @@ pub(super) struct Limits {
     pub step_tolerance: Option<f64>,
     /// Whether the state the iterations end at is judged for stability (`stable_unshifted`,
     /// `gauge_modes_only`): not a state that only starts the next sub-step of the same path,
-    /// whose verdict the final state's replaces. On a 10⁵-edge chain the judgement is a block
-    /// inverse iteration of up to 120 solves, tens of factorizations' worth per sub-step
-    /// (docs/performance.md, "Cost per iteration on long chains"). The saddle escape is still
-    /// tried: it changes the path.
+    /// whose verdict the final state's replaces. The judgement is a block inverse iteration of
+    /// up to 120 solves, on long chains tens of factorizations' worth per sub-step
+    /// (docs/performance.md). The saddle escape is still tried: it changes the path.
     pub judge_stability: bool,
 }
 
@@ -309,7 +308,7 @@ impl Newton {
             return Err(Outcome::AtFloor);
         }
         // Below the floor and still halving the residual, Newton is in its quadratic phase:
-        // the residual no longer sees errors along soft modes (on a slender cantilever,
+        // the residual no longer sees errors along soft modes (on a slender rod, an error of
         // 1e-9 of the tip position is 1e-9 of the force scale), and the step that the cap
         // would cut short is the one that removes them.
         let at_cap = it >= lim.cap && res >= floor;
@@ -417,16 +416,14 @@ impl Newton {
     /// energy `e0` along the step in `d`, ½·|gᵀd|, is at most `CONVERGING_ITERATIONS` times
     /// the mean decrease of the last `its` iterations (from `last_energy`). Two iterations, not
     /// one: near the round-off floor of a very slender rod a single iteration's decrease is
-    /// noisy, and one short iteration (r/L = 1e-5: 4e-14 J after 2e-12 J) had a full-load
-    /// attempt that was 3e-13 J from its equilibrium retried from a quarter of the load
-    /// (28 iterations instead of 14). The model is trusted where the
+    /// noisy, and one short iteration would have an attempt already close to its equilibrium
+    /// judged stalled and retried from a smaller load. The model is trusted where the
     /// shift carries at most a tenth of the step's curvature dᵀ(H + τW)d = −gᵀd; beyond, the
     /// Hessian is indefinite along the step and the model says nothing of the distance left,
     /// unless even the shifted model's decrease is below `ENERGY_CONVERGED` of the recent ones:
     /// then the energy has converged and what is left is in the residual. A very slender rod
     /// near its round-off floor can fail to factor there by round-off alone, and retrying it
-    /// from a smaller load discarded an attempt as good as converged (docs/performance.md,
-    /// "Remedy, landed").
+    /// from a smaller load discarded an attempt as good as converged.
     fn converging(&self, e0: f64, (last_energy, its): (f64, f64), shift: f64) -> bool {
         let slope: f64 = self.g.iter().zip(&self.d).map(|(a, b)| a * b).sum();
         let decrease = (last_energy - e0) / its;

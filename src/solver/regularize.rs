@@ -26,7 +26,7 @@ impl Newton {
     /// τ₀ is the floor, 1e-10 of the diagonal scale, and the magnitude is unknown: g = 100
     /// finds a shift in about half the failed factorizations, overshooting by at most 100×
     /// instead of 10×, which the memory's start at τ/10 corrects on the next indefinite
-    /// iteration (docs/performance.md, sixteenth session).
+    /// iteration (docs/performance.md).
     ///
     /// The unshifted attempt is made at every iteration, even while it keeps failing: skipping
     /// it would save a factorization per indefinite iteration, but the shift would then linger

@@ -51,11 +51,11 @@ impl Spectrum {
 /// ‖Hu − λWu‖_W⁻¹ (an eigenvalue of H lies within it), above ten times the gradient's size
 /// ‖g‖_W⁻¹ (`gradient`: a symmetry's zero mode at a state off equilibrium by g is lifted by
 /// about ‖g‖ over the size of the symmetry's motion, itself at least about one in W's units)
-/// and above round-off (1e-13 of the scale); at most 1e-10 of the scale, as zero has always
-/// been taken. The cap alone called a slender rod's soft bending modes zero at fine
-/// discretizations, the scale being the stretch stiffness (∝ n) and the soft modes'
-/// eigenvalues ∝ 1/n: a clamped shallow arch's inverted state, n = 64, near its stability
-/// threshold (λ ≈ 1e-11 of the scale, residual 1e-13; docs/stability.md).
+/// and above round-off (1e-13 of the scale); at most 1e-10 of the scale, the solver's zero
+/// elsewhere (`modes.rs`, `step.rs`). The cap alone would call a slender rod's soft bending
+/// modes zero at fine discretizations, the scale being the stretch stiffness (∝ n) and the
+/// soft modes' eigenvalues ∝ 1/n: near a stability threshold (an inverted shallow arch) a
+/// resolved eigenvalue can lie below 1e-10 of the scale (docs/stability.md).
 pub(super) fn zero_band(residual: f64, gradient: f64, scale: f64) -> f64 {
     (2.0 * residual)
         .max(10.0 * gradient)
@@ -67,10 +67,10 @@ pub(super) fn zero_band(residual: f64, gradient: f64, scale: f64) -> f64 {
 /// does. A mode that deforms a rod is no symmetry's (no gradient share) and costs bending
 /// energy: its band is also capped at `Mechanisms::zero_stiffness`, a negligible fraction
 /// of the softest stiffness a rod of the structure can have. Without that cap the round-off
-/// part alone (1e-13 of a scale dominated by the stiffest, shortest stencils) swallowed a
+/// part alone (1e-13 of a scale dominated by the stiffest, shortest stencils) would swallow a
 /// refined rod's physical bending modes, whose eigenvalues fall as 1/n³ in W against a scale
-/// that grows as n: a clamped cantilever (r/L = 1e-2) at 10⁴ edges, lowest eigenvalue 2.7e-16
-/// of the scale and yet within 0.6 % of n·λ's limit, was "neutral" (docs/stability.md).
+/// that grows as n: at 10⁴ edges a clamped rod's lowest eigenvalue is far below 1e-13 of the
+/// scale and yet accurate, and must not be called neutral (docs/stability.md).
 pub(super) fn mode_band<P: Mechanisms>(
     p: &mut P,
     u: &[f64],

@@ -19,8 +19,8 @@ const ZERO_EIGENVALUE: f64 = 1e-10;
 const LIFT_DOUBLINGS: usize = 40;
 /// Golden sections of the lift's bracket (0.618⁸ ≈ 2 % of it).
 const LIFT_SECTIONS: usize = 8;
-/// Most passes of a trial point's length repair (each removes all but 1–15 % of the excess on
-/// the slender cantilever).
+/// Most passes of a trial point's length repair (on slender rods each removes all but a few
+/// percent of the excess).
 const REPAIR_PASSES: usize = 8;
 /// A trial point is repaired while the energy of its length excess is above this share of the
 /// step's predicted decrease α|gᵀd|: below, the repair cannot change the line search's verdict.
@@ -39,9 +39,9 @@ pub(super) enum Second {
 /// iterate) to those the linearization of α·d gives, by passes c = −(H + τW)⁻¹f with f the
 /// stretch force of the remaining excess (`NewtonProblem::excess_force`; `chol` holds the
 /// step's factor, `f` is scratch). The curve x + αd + α²c restores lengths to second order
-/// only: where a step turns edges by a large fraction of a radian (the slender cantilever's
-/// first steps: 0.5 rad at α = 0.2), the rest of the excess still carries stretch energy
-/// EA/EI ≈ (L/r)² times the bending the step relieves, and the line search cut the step 16-fold.
+/// only: where a step turns edges by a large fraction of a radian (a slender rod's first steps
+/// under a large load), the rest of the excess still carries stretch energy EA/EI ≈ (L/r)²
+/// times the bending the step relieves, and the line search would cut the step many-fold.
 /// Passes stop once the excess energy is below `REPAIR_SHARE` of the predicted decrease, or
 /// when a pass removes less than three quarters of it. Returns whether `trial` was moved.
 pub(super) fn repair_lengths<P: LengthRepair>(
@@ -78,16 +78,15 @@ impl Newton {
     ///
     /// On a shifted (indefinite) Hessian the order is reversed, so that the line search keeps
     /// the geometric curve unless the other is clearly better: (H + τW)⁻¹ amplifies round-off
-    /// along soft and zero-energy modes, and on near-ties the choice would follow round-off (the
-    /// twisted ring of `michell.ron` ended 5e-5 apart in scaled copies). Dropping the stretch
-    /// correction on shifted Hessians altogether cost the gridshell footprints their convergence.
+    /// along soft and zero-energy modes, and on near-ties the choice would follow round-off
+    /// (scaled copies of a problem would end apart). The stretch correction is still tried on
+    /// shifted Hessians: strongly bent networks do not converge without it.
     ///
     /// Neither is made where the plain step keeps every length to round-off (the excess force
     /// is zero: Newton's last iterations): there is nothing for either curve to restore, and
-    /// they would only cost the geometric correction and their trial energies. (Dropping them
-    /// wherever the excess energy was below 1e-5 of the predicted decrease was tried: the
-    /// excess force still dominated the residual there, and `buckle_toward` on the hemisphere
-    /// footprint took 19 iterations instead of 17.)
+    /// they would only cost the geometric correction and their trial energies. (Not merely
+    /// where the excess energy is small against the predicted decrease: the excess force can
+    /// still dominate the residual there, and dropping the curves costs iterations.)
     ///
     /// On Newton's own step (`on_newton_model`: the line search may skip the second curve, see
     /// `line_search`), the geometric correction behind the energy-optimal one is not made here

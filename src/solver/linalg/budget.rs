@@ -1,7 +1,7 @@
 //! What the sparse Cholesky factorization of a pattern will cost, known before any numeric
 //! array is allocated: faer's symbolic analysis is cheap (linear in the pattern, plus the
 //! ordering) and gives the factor's non-zeros exactly, so a scene too large for the machine can
-//! be refused instead of aborting in the allocator (docs/performance.md, "Memory").
+//! be refused instead of aborting in the allocator (docs/performance.md).
 
 use faer::sparse::linalg::cholesky::{SymbolicCholesky, SymbolicCholeskyRaw};
 use faer::Par;

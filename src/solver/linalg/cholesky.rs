@@ -18,9 +18,9 @@ use super::symbolic::{self, Symbolic};
 
 /// The symbolic analysis's settings. faer's automatic choice (threshold 1) takes the supernodal
 /// factorization when the factor's flops per non-zero exceed 40; on rod networks the supernodal
-/// kernels win from half that: the n = 12 hemisphere's factorizations take 2.7× fewer
-/// instructions (docs/performance.md), while rods and chains (few flops per non-zero) stay
-/// simplicial, where the supernodal overhead would not pay.
+/// kernels already win from half that (measured on gridshells: docs/performance.md), while rods
+/// and chains (few flops per non-zero) stay simplicial, where the supernodal overhead would not
+/// pay.
 pub fn symbolic_params() -> CholeskySymbolicParams<'static> {
     CholeskySymbolicParams {
         supernodal_flop_ratio_threshold: faer::sparse::linalg::SupernodalThreshold(0.5),
@@ -342,8 +342,8 @@ impl SparseCholesky {
     /// Column by column, each entry of the upper triangle (rows sorted, r ≤ c) added to its row
     /// and to its column. A column's own sum is kept in a register: y_c is still zero when its
     /// column is reached (later columns add to it only after), so the sums are those of adding
-    /// to y_c in memory, to the last bit (tests/sparse_product.rs), at two thirds of the time on
-    /// a 10⁵-edge chain (docs/performance.md).
+    /// to y_c in memory, to the last bit (tests/sparse_product.rs), without a load and a store
+    /// of y_c per entry.
     pub fn multiply_with(&self, values: &[f64], x: &[f64], y: &mut [f64]) {
         y.iter_mut().for_each(|v| *v = 0.0);
         let cp = self.symbolic.pattern.col_ptr();

@@ -33,9 +33,8 @@ pub const AUTO_MIN_UNKNOWNS: usize = 20_000;
 
 /// The dissection pays only when it saves much work: rods between crossings are chains, which
 /// AMD orders well, and AMD's factor, with fewer non-zeros in larger supernodes, factors faster
-/// than a dissection with half its flops (hemisphere 24×8: flops 0.52 of AMD's, 1.6× slower).
-/// Measured (docs/performance.md, fourteenth session): the dissection is faster from 0.20 of
-/// AMD's flops down (32×8: 9 %, 36×8: 23 %, 48×8: 2.8×) and slower from 0.52 up.
+/// than a dissection with half its flops. On gridshells the dissection was measured faster
+/// from 0.20 of AMD's flops down and slower from 0.52 up (docs/performance.md).
 pub const AUTO_FLOPS_RATIO: f64 = 0.3;
 
 /// Geometric nested dissection of the graph of `pairs` (upper-triangle (row, column) entries,

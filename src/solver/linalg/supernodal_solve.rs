@@ -67,8 +67,8 @@ pub struct Split {
     top: usize,
 }
 
-/// Factor values below which a solve stays on one thread: on the hemisphere's factors the
-/// split solve was slower below about a million values (docs/performance.md).
+/// Factor values below which a solve stays on one thread: on gridshells' factors the split
+/// solve was measured slower below about a million values (docs/performance.md).
 const PARALLEL_VALUES: usize = 1_200_000;
 /// Least share of the factor's values in the smaller group for a split to pay.
 const SMALLER_GROUP: f64 = 0.2;

@@ -1,16 +1,16 @@
 //! The polish's fallback: the step QP's exact solution by the active-set method of Lawson and
 //! Hanson on its dual, min ½zᵀSz − zᵀ(J P⁻¹g − c) over z ≥ 0 with S = J P⁻¹Jᵀ.
 //!
-//! The primal-dual rounds of [`StepQp::polish`] change many rows at once and can cycle: on a
-//! 5 × 5 grid of rods pinned at its centre and draped over a sphere (tests/drape_over_sphere.rs),
-//! whose free spin about the vertical leaves the shifted Hessian nearly singular, Clarabel
-//! stopped with InsufficientProgress and the rounds went 24 → 70 → 50 → 26 → 22 active rows
-//! without settling, so the interior point's inaccurate step (an ascent direction) stood, for
-//! 1000 iterations. Lawson–Hanson adds one row at a time (the most violated linearized
-//! constraint, i.e. the dual's steepest coordinate) and, when a multiplier would turn negative,
-//! moves back to the boundary and drops it; the dual energy falls at every step, so it cannot
-//! cycle, and it ends at the exact solution. It only ever needs the active rows' columns of
-//! P⁻¹Jᵀ: the dual gradient of a row is minus its linearized gap at the primal step.
+//! The primal-dual rounds of [`StepQp::polish`] change many rows at once and can cycle: where
+//! a free motion (a structure pinned at one point and resting on an obstacle, free to spin)
+//! leaves the shifted Hessian nearly singular, Clarabel can stop with InsufficientProgress and
+//! the active set oscillate between rounds without settling, so that the interior point's
+//! inaccurate step, possibly an ascent direction, would stand at every iteration
+//! (tests/drape_over_sphere.rs). Lawson–Hanson adds one row at a time (the most violated
+//! linearized constraint, i.e. the dual's steepest coordinate) and, when a multiplier would turn
+//! negative, moves back to the boundary and drops it; the dual energy falls at every step, so it
+//! cannot cycle, and it ends at the exact solution. It only ever needs the active rows' columns
+//! of P⁻¹Jᵀ: the dual gradient of a row is minus its linearized gap at the primal step.
 
 use std::collections::HashMap;
 use std::ops::Range;
