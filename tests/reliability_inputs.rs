@@ -218,3 +218,50 @@ fn sweep_outputs_stay_home_and_merge_takes_only_current_points() {
     assert_eq!(o.status.code(), Some(2), "{t}");
     assert!(t.contains("not a plain file name"), "{t}");
 }
+
+/// A sweep whose point file cannot be written where it is (a directory stands at its path) is
+/// refused before any point is solved (exit 2, naming the path), instead of exiting 2 after
+/// solving every point.
+#[test]
+fn a_sweep_refuses_an_unwritable_point_file_before_solving() {
+    let d = tmpdir("rel-in", "sweep-dir");
+    std::fs::write(
+        d.join("beam.ron"),
+        std::fs::read_to_string(concat!(
+            env!("CARGO_MANIFEST_DIR"),
+            "/networks/cantilever.ron"
+        ))
+        .unwrap(),
+    )
+    .unwrap();
+    let sweep = |name: &str| {
+        let f = d.join(format!("{name}.ron"));
+        std::fs::write(
+            &f,
+            format!(
+                "Sweep(scene: \"beam.ron\", grid: {{\"materials.steel.young_modulus\": [1e8, \
+                 2e8]}}, output: \"{name}\")"
+            ),
+        )
+        .unwrap();
+        rodnet().arg("sweep").arg(f).output().unwrap()
+    };
+    let o = sweep("first");
+    assert_eq!(o.status.code(), Some(0), "{}", text(&o));
+    let mut names: Vec<String> = std::fs::read_dir(d.join("first"))
+        .unwrap()
+        .map(|e| e.unwrap().file_name().to_string_lossy().into_owned())
+        .filter(|n| n.ends_with(".json") && n != "manifest.json")
+        .collect();
+    names.sort();
+    assert_eq!(names.len(), 2, "{names:?}");
+    std::fs::create_dir_all(d.join("second").join(&names[1])).unwrap();
+    let o = sweep("second");
+    let t = text(&o);
+    assert_eq!(o.status.code(), Some(2), "{t}");
+    assert!(t.contains(&names[1]) && t.contains("directory"), "{t}");
+    assert!(
+        !d.join("second").join(&names[0]).exists(),
+        "a point was solved: {t}"
+    );
+}

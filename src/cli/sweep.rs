@@ -76,6 +76,9 @@ pub(super) fn run(a: &SweepArgs) -> i32 {
     if let Err(e) = sweep.write_manifest() {
         return bad(e);
     }
+    if let Err(e) = sweep.check_point_files() {
+        return bad(e);
+    }
     let total = sweep.points.len();
     if let Some(i) = a.point {
         if i >= total {

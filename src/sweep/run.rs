@@ -197,6 +197,18 @@ impl Sweep {
         same.then_some(record)
     }
 
+    /// Refuses, before anything is solved, a point whose results file could not be written
+    /// where it is: a directory, a named pipe or socket, a dangling link (`io::atomic::target`).
+    /// (A write that still fails later, a full disk, is the point's own error.)
+    pub fn check_point_files(&self) -> Result<(), String> {
+        (0..self.points.len()).try_for_each(|i| {
+            let file = self.point_file(i);
+            crate::io::atomic::target(&file)
+                .map(|_| ())
+                .map_err(|e| format!("cannot write {}: {e}", file.display()))
+        })
+    }
+
     /// Runs point `i` unless its results exist from the same inputs, and writes its file; `Err`
     /// only when the file cannot be written.
     pub fn run_point(&self, i: usize) -> Result<Outcome, String> {
