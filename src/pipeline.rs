@@ -249,13 +249,31 @@ pub fn finish(
     report: NewtonReport,
     measure: impl FnOnce(&Network, &mut Equilibrium),
 ) -> Solution {
+    finish_warned(network, scene, report, measure, warnings_of(scene))
+}
+
+/// What the scene probably did not mean (`scene::validate::warnings`), as the results list it:
+/// `field: message`.
+pub fn warnings_of(scene: &Scene) -> Vec<String> {
+    crate::scene::validate::warnings(scene)
+        .iter()
+        .map(|w| format!("{}: {}", w.path(), w.message))
+        .collect()
+}
+
+/// [`finish`] with the scene's [`warnings_of`] computed once by a caller that finishes several
+/// solutions of one scene.
+pub fn finish_warned(
+    network: Network,
+    scene: &Scene,
+    report: NewtonReport,
+    measure: impl FnOnce(&Network, &mut Equilibrium),
+    warnings: Vec<String>,
+) -> Solution {
     let mut equilibrium = Equilibrium::compute(&network, scene, &report);
     measure(&network, &mut equilibrium);
     let mut results = Results::new(&equilibrium, &report);
-    results.warnings = crate::scene::validate::warnings(scene)
-        .iter()
-        .map(|w| format!("{}: {}", w.path(), w.message))
-        .collect();
+    results.warnings = warnings;
     Solution {
         network,
         report,

@@ -1,7 +1,7 @@
 //! The equilibria pushes along the lowest modes reach (`rodnet states`).
 
 use crate::io::results::Results;
-use crate::pipeline::{build_for, finish, JobError};
+use crate::pipeline::{build_for, finish_warned, warnings_of, JobError};
 use crate::scene::Scene;
 use crate::solver::NewtonSettings;
 
@@ -31,12 +31,13 @@ pub fn states(
     }
     let found = crate::network::states::search(&mut network, settings, first, &rest, max)
         .map_err(JobError::Refused)?;
+    let warnings = warnings_of(scene);
     Ok(found
         .into_iter()
         .map(|f| {
             let mut net = network.clone();
             net.model.state = f.state.clone();
-            let sol = finish(net, scene, f.report.clone(), |_, _| {});
+            let sol = finish_warned(net, scene, f.report.clone(), |_, _| {}, warnings.clone());
             (f, sol.results)
         })
         .collect())
