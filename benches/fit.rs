@@ -53,7 +53,13 @@ fn read_mesh(bencher: divan::Bencher, rings: usize) {
 fn net_and_footprint(bencher: divan::Bencher, rings: usize) {
     let s = Arc::new(Surface::from_obj("h.obj", &obj(rings)).unwrap());
     let spec = spec();
-    bencher.bench(|| footprint(&s, "h.obj", &spec).unwrap().scene.joints.len());
+    bencher.bench(|| {
+        footprint(&s, "h.obj", &spec, u64::MAX)
+            .unwrap()
+            .scene
+            .joints
+            .len()
+    });
 }
 
 /// The whole fit (net, footprint, network, form finding from the net, measurements) on a mesh
@@ -63,7 +69,7 @@ fn whole_fit(bencher: divan::Bencher) {
     let s = Arc::new(Surface::from_obj("h.obj", &obj(48)).unwrap());
     let spec = spec();
     bencher.bench(|| {
-        job::run(&s, "h.obj", &spec, None)
+        job::run(&s, "h.obj", &spec, None, &rodnet::pipeline::Limits::NONE)
             .ok()
             .expect("fits")
             .results

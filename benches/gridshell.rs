@@ -33,16 +33,24 @@ fn spec(case: &str) -> HemisphereSpec {
     sample_size = 1
 )]
 fn form_finding(case: &str) -> bool {
-    run(&spec(case), DEFAULT_START_CAP, None)
-        .unwrap()
-        .results
-        .converged
+    run(
+        &spec(case),
+        DEFAULT_START_CAP,
+        None,
+        &rodnet::pipeline::Limits::NONE,
+    )
+    .unwrap()
+    .results
+    .converged
 }
 
 /// From the analytic net of the hemisphere (`--start-cap 1`).
 #[divan::bench(args = ["12x4", "12x8", "24x8"], sample_count = 5, sample_size = 1)]
 fn from_analytic_net(case: &str) -> bool {
-    run(&spec(case), 1.0, None).unwrap().results.converged
+    run(&spec(case), 1.0, None, &rodnet::pipeline::Limits::NONE)
+        .unwrap()
+        .results
+        .converged
 }
 
 /// The flat footprint solved as a user's scene with only `buckle_toward: Some((0, 0, 1))` added
@@ -58,7 +66,7 @@ fn footprint_buckle_toward(bencher: divan::Bencher, case: &str) {
 /// The n = 12, K = 8 model at its equilibrium, with its Hessian pattern.
 fn equilibrium() -> (Model, Vec<(usize, usize)>) {
     let s = spec("12x8");
-    let r = run(&s, DEFAULT_START_CAP, None).unwrap();
+    let r = run(&s, DEFAULT_START_CAP, None, &rodnet::pipeline::Limits::NONE).unwrap();
     let mut m = build(&footprint(&s).scene).unwrap().model;
     m.state = r.network.model.state.clone();
     m.set_load(1.0);

@@ -13,7 +13,13 @@ fn main() {
 }
 
 fn dome() -> HemisphereRun {
-    let r = run(&HemisphereSpec::new(1.0, 12, 8), DEFAULT_START_CAP, None).expect("footprint");
+    let r = run(
+        &HemisphereSpec::new(1.0, 12, 8),
+        DEFAULT_START_CAP,
+        None,
+        &rodnet::pipeline::Limits::NONE,
+    )
+    .expect("footprint");
     assert!(r.form.report.converged && r.form.report.stable);
     r
 }

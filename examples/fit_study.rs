@@ -56,9 +56,15 @@ fn main() {
     for (name, mesh, origin) in shapes_list() {
         let s = Arc::new(Surface::from_obj(name, &shapes::to_obj(&mesh(64))).unwrap());
         let t0 = Instant::now();
-        let run = job::run(&s, name, &spec(origin, 4), None)
-            .ok()
-            .expect("fits");
+        let run = job::run(
+            &s,
+            name,
+            &spec(origin, 4),
+            None,
+            &rodnet::pipeline::Limits::NONE,
+        )
+        .ok()
+        .expect("fits");
         let total = t0.elapsed().as_secs_f64();
         let t = run.results.target.as_ref().unwrap();
         let b = &run.net_block;
@@ -80,13 +86,29 @@ fn main() {
         let mut row = format!("| {name} |");
         let fine = Arc::new(Surface::from_obj(name, &shapes::to_obj(&mesh(64))).unwrap());
         for k in [2, 4, 8] {
-            let r = job::run(&fine, name, &spec(origin, k), None).ok().unwrap();
+            let r = job::run(
+                &fine,
+                name,
+                &spec(origin, k),
+                None,
+                &rodnet::pipeline::Limits::NONE,
+            )
+            .ok()
+            .unwrap();
             let t = r.results.target.as_ref().unwrap();
             row += &format!(" {:.3e} |", t.rms_distance.unwrap() / fine.size);
         }
         for rings in [16, 32, 64, 128] {
             let s = Arc::new(Surface::from_obj(name, &shapes::to_obj(&mesh(rings))).unwrap());
-            let r = job::run(&s, name, &spec(origin, 4), None).ok().unwrap();
+            let r = job::run(
+                &s,
+                name,
+                &spec(origin, 4),
+                None,
+                &rodnet::pipeline::Limits::NONE,
+            )
+            .ok()
+            .unwrap();
             let t = r.results.target.as_ref().unwrap();
             row += &format!(" {:.3e} |", t.rms_distance.unwrap() / s.size);
         }

@@ -22,7 +22,7 @@ fn row(n: usize, k: usize, j: JointChoice, ratio: f64, cap: f64, steps: usize) {
     spec.joint = j;
     spec.section = Section::Circle { radius: ratio };
     spec.load_steps = steps;
-    let r = run(&spec, cap, None).expect("valid footprint");
+    let r = run(&spec, cap, None, &rodnet::pipeline::Limits::NONE).expect("valid footprint");
     let m = &r.metrics;
     let rep = &r.form.report;
     println!(

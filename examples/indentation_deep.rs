@@ -33,7 +33,13 @@ fn one(joint: JointChoice, n: usize, ratio: f64, depth: f64) -> Result<Case, Str
     spec.joint = joint;
     spec.section = Section::Circle { radius: ratio };
     let t0 = std::time::Instant::now();
-    let mut r = run(&spec, DEFAULT_START_CAP, None).map_err(|e| e.message)?;
+    let mut r = run(
+        &spec,
+        DEFAULT_START_CAP,
+        None,
+        &rodnet::pipeline::Limits::NONE,
+    )
+    .map_err(|e| e.message)?;
     let form_seconds = t0.elapsed().as_secs_f64();
     if !(r.form.report.converged && r.form.report.stable) {
         return Err("form finding did not reach a stable state".into());

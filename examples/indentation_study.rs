@@ -41,7 +41,13 @@ fn one(n: usize, ratio: f64, joint: JointChoice, nu: f64) -> Row {
     spec.joint = joint;
     spec.section = Section::Circle { radius: ratio };
     spec.poisson_ratio = nu;
-    let mut r = run(&spec, DEFAULT_START_CAP, None).expect("valid footprint");
+    let mut r = run(
+        &spec,
+        DEFAULT_START_CAP,
+        None,
+        &rodnet::pipeline::Limits::NONE,
+    )
+    .expect("valid footprint");
     let ok = r.form.report.converged && r.form.report.stable;
     let (node, apex) = r
         .network

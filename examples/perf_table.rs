@@ -54,7 +54,13 @@ fn table() {
             let mut times = vec![];
             let mut last = None;
             for _ in 0..repeats {
-                let r = run(&spec, DEFAULT_START_CAP, None).unwrap();
+                let r = run(
+                    &spec,
+                    DEFAULT_START_CAP,
+                    None,
+                    &rodnet::pipeline::Limits::NONE,
+                )
+                .unwrap();
                 assert!(
                     r.results.converged,
                     "n {n} K {k}: {:?}",

@@ -11,7 +11,8 @@ fn main() {
     let mut best = f64::INFINITY;
     for _ in 0..n {
         let t0 = std::time::Instant::now();
-        let run = rodnet::gridshell::job::run(&spec, cap, None).unwrap();
+        let run =
+            rodnet::gridshell::job::run(&spec, cap, None, &rodnet::pipeline::Limits::NONE).unwrap();
         let total = t0.elapsed().as_secs_f64();
         if total < best {
             eprintln!(

@@ -11,7 +11,12 @@ fn main() {
     let subdivide = a.next().map_or(4, |k| k.parse().unwrap());
     let mut spec = HemisphereSpec::new(1.0, rods, subdivide);
     spec.load_steps = a.next().map_or(1, |k| k.parse().unwrap());
-    let run = rodnet::gridshell::job::run(&spec, DEFAULT_START_CAP, Some(std::sync::Arc::new(cb)))
-        .unwrap();
+    let run = rodnet::gridshell::job::run(
+        &spec,
+        DEFAULT_START_CAP,
+        Some(std::sync::Arc::new(cb)),
+        &rodnet::pipeline::Limits::NONE,
+    )
+    .unwrap();
     eprintln!("{:?}", run.form.report);
 }

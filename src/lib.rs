@@ -13,6 +13,7 @@ pub mod cli;
 pub mod energy;
 pub mod gridshell;
 pub mod io;
+pub mod jobs;
 pub mod math;
 pub mod network;
 pub mod pipeline;

@@ -6,8 +6,9 @@
 
 mod support;
 
+use rodnet::jobs::states;
 use rodnet::network::states::Found;
-use rodnet::pipeline::{settings_of, states};
+use rodnet::pipeline::settings_of;
 use support::shallow_arch::{bistable_threshold, ShallowArch};
 
 const E: f64 = 1e9;

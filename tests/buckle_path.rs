@@ -8,7 +8,8 @@
 mod common;
 
 use common::*;
-use rodnet::pipeline::buckle;
+use rodnet::jobs::buckle;
+use rodnet::pipeline::Limits;
 use rodnet::rod::section::Section;
 use rodnet::scene::types::*;
 
@@ -52,7 +53,8 @@ fn a_clean_bifurcation_has_its_path_value_and_a_stable_path_none() {
     let gj = g * SECTION.torsion_constant();
     let (eiy, eix) = (e * iy, e * ix);
     let exact = 4.0126 * (eiy * gj).sqrt() / ((1.0 - eiy / eix) * (1.0 - gj / eix)).sqrt();
-    let b = buckle(&cantilever([0.0, 1.0, 0.0]), 2, false, None).unwrap_or_else(|_| panic!());
+    let b = buckle(&cantilever([0.0, 1.0, 0.0]), 2, false, None, &Limits::NONE)
+        .unwrap_or_else(|_| panic!());
     let path = b.json.path.as_ref().unwrap();
     println!(
         "strong axis: {:?} at {:?}, exact {exact:.6e}",
@@ -62,7 +64,8 @@ fn a_clean_bifurcation_has_its_path_value_and_a_stable_path_none() {
     let f = path.critical_load_factor.unwrap();
     assert!((f / exact - 1.0).abs() < 5e-3, "{f} vs {exact}");
 
-    let b = buckle(&cantilever([0.0, 0.0, 1.0]), 2, false, None).unwrap_or_else(|_| panic!());
+    let b = buckle(&cantilever([0.0, 0.0, 1.0]), 2, false, None, &Limits::NONE)
+        .unwrap_or_else(|_| panic!());
     let path = b.json.path.as_ref().unwrap();
     println!(
         "weak axis: {:?}, linear {:?}",

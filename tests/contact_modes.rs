@@ -4,11 +4,12 @@
 //! mode, the second derivative of the energy along a path that keeps the pressed node on the
 //! ball (the curvature term −μ/d).
 
+use rodnet::jobs::analyse_modes;
 use rodnet::math::vec::{add, norm, scalef, sub};
 use rodnet::network::active_set::hold_active;
 use rodnet::network::assembly::Assembly;
 use rodnet::network::stability::analyse;
-use rodnet::pipeline::{analyse_modes, settings_of, solve_scene, Solution};
+use rodnet::pipeline::{settings_of, solve_scene, Solution};
 use rodnet::scene::parse;
 
 const R: f64 = 0.01;

@@ -8,7 +8,13 @@ use rodnet::gridshell::job::{run, HemisphereRun};
 use rodnet::gridshell::report::ShapeMetrics;
 
 fn form_find(n: usize, subdivide: usize, start_cap: f64) -> HemisphereRun {
-    let r = run(&HemisphereSpec::new(1.0, n, subdivide), start_cap, None).unwrap();
+    let r = run(
+        &HemisphereSpec::new(1.0, n, subdivide),
+        start_cap,
+        None,
+        &rodnet::pipeline::Limits::NONE,
+    )
+    .unwrap();
     assert!(
         r.results.converged,
         "n = {n}, subdivide {subdivide}: {:?}",
@@ -145,7 +151,13 @@ fn hinge_rigid_and_elastic_joints_form_find_and_rigid_ones_resist_the_net() {
     let with = |joint| {
         let mut spec = HemisphereSpec::new(1.0, 6, 2);
         spec.joint = joint;
-        let r = run(&spec, DEFAULT_START_CAP, None).unwrap();
+        let r = run(
+            &spec,
+            DEFAULT_START_CAP,
+            None,
+            &rodnet::pipeline::Limits::NONE,
+        )
+        .unwrap();
         assert!(
             r.results.converged,
             "{joint:?}: {:?}",
@@ -184,11 +196,23 @@ fn hinge_rigid_and_elastic_joints_form_find_and_rigid_ones_resist_the_net() {
 fn a_cap_step_that_fails_is_halved_and_reaches_the_same_dome() {
     let mut spec = HemisphereSpec::new(1.0, 6, 2);
     spec.load_steps = 1;
-    let reference = run(&spec, DEFAULT_START_CAP, None).unwrap();
+    let reference = run(
+        &spec,
+        DEFAULT_START_CAP,
+        None,
+        &rodnet::pipeline::Limits::NONE,
+    )
+    .unwrap();
     assert!(reference.results.converged);
     assert_eq!(reference.form.report.retries, 0);
     spec.max_iterations = 5;
-    let halved = run(&spec, DEFAULT_START_CAP, None).unwrap();
+    let halved = run(
+        &spec,
+        DEFAULT_START_CAP,
+        None,
+        &rodnet::pipeline::Limits::NONE,
+    )
+    .unwrap();
     assert!(
         halved.results.converged,
         "{:?}",
@@ -200,7 +224,13 @@ fn a_cap_step_that_fails_is_halved_and_reaches_the_same_dome() {
         assert!((x - y).abs() < 1e-6, "{name}: {x} vs {y}");
     }
     spec.max_iterations = 1;
-    let stopped = run(&spec, DEFAULT_START_CAP, None).unwrap();
+    let stopped = run(
+        &spec,
+        DEFAULT_START_CAP,
+        None,
+        &rodnet::pipeline::Limits::NONE,
+    )
+    .unwrap();
     assert!(!stopped.results.converged);
     let msg = stopped.results.solver.message.clone().unwrap();
     assert!(msg.contains("cap of radius"), "{msg}");

@@ -34,7 +34,7 @@ fn surface(name: &str, mesh: &shapes::Mesh) -> Arc<Surface> {
 }
 
 fn fit(s: &Arc<Surface>, spec: &FitSpec) -> job::FitRun {
-    match job::run(s, "target.obj", spec, None) {
+    match job::run(s, "target.obj", spec, None, &rodnet::pipeline::Limits::NONE) {
         Ok(r) => r,
         Err(job::FitError::Net(e)) => panic!("{e}"),
         Err(job::FitError::Scene(e)) => panic!("{}: {}", e.path(), e.message),
@@ -45,7 +45,13 @@ fn fit(s: &Arc<Surface>, spec: &FitSpec) -> job::FitRun {
 /// (same names), to a distance that falls with the mesh's resolution.
 #[test]
 fn a_fitted_hemisphere_mesh_is_the_hemisphere_jobs_dome() {
-    let exact = rodnet::gridshell::job::run(&HemisphereSpec::new(1.0, 12, 4), 5.0, None).unwrap();
+    let exact = rodnet::gridshell::job::run(
+        &HemisphereSpec::new(1.0, 12, 4),
+        5.0,
+        None,
+        &rodnet::pipeline::Limits::NONE,
+    )
+    .unwrap();
     let position = |r: &rodnet::io::results::Results, name: &str| {
         r.joints
             .iter()

@@ -27,6 +27,9 @@ const LAYERS: &[(&str, &[&str])] = &[
     ),
     ("io", &["math", "network", "scene", "solver"]),
     ("pipeline", &["io", "network", "scene", "solver"]),
+    // The commands' jobs beyond a plain solve (buckle, states, indent, modes): each runs the
+    // pipeline's flow, and the pipeline knows none of them.
+    ("jobs", &["io", "network", "scene", "solver", "pipeline"]),
     // The jobs above the pipeline: nothing below `cli` imports `cli`, so that sweeps and Python
     // share the jobs' options and checks without the command line.
     (
@@ -42,6 +45,7 @@ const LAYERS: &[(&str, &[&str])] = &[
             "network",
             "io",
             "pipeline",
+            "jobs",
         ],
     ),
     (
@@ -57,6 +61,7 @@ const LAYERS: &[(&str, &[&str])] = &[
             "network",
             "io",
             "pipeline",
+            "jobs",
             "gridshell",
         ],
     ),
@@ -73,6 +78,7 @@ const LAYERS: &[(&str, &[&str])] = &[
             "network",
             "io",
             "pipeline",
+            "jobs",
             "gridshell",
             "study",
         ],
@@ -90,6 +96,7 @@ const LAYERS: &[(&str, &[&str])] = &[
             "network",
             "io",
             "pipeline",
+            "jobs",
             "gridshell",
             "study",
             "sweep",

@@ -7,7 +7,7 @@ mod common;
 use std::f64::consts::PI;
 
 use common::*;
-use rodnet::pipeline::{settings_of, solve_scene};
+use rodnet::pipeline::{settings_of, solve_scene, Limits};
 use rodnet::scene::types::*;
 use rodnet::solver::path_events::EventKind;
 
@@ -127,7 +127,8 @@ fn buckle_linearizes_about_the_stage_before_the_scaled_one() {
         (Some("more"), "base", 0.5),
         (Some("base"), "rest", 2.0),
     ] {
-        let b = rodnet::pipeline::buckle(&s, 2, true, stage).unwrap_or_else(|_| panic!());
+        let b =
+            rodnet::jobs::buckle(&s, 2, true, stage, &Limits::NONE).unwrap_or_else(|_| panic!());
         let f = b.json.critical_load_factors[0];
         println!(
             "--stage {stage:?}: about {:?}, factor {f:.6}",
@@ -136,7 +137,7 @@ fn buckle_linearizes_about_the_stage_before_the_scaled_one() {
         assert_eq!(b.json.about_stage.as_deref(), Some(about));
         assert!((f / factor - 1.0).abs() < 1e-3, "{f} vs {factor}");
     }
-    assert!(rodnet::pipeline::buckle(&s, 2, true, Some("nope")).is_err());
+    assert!(rodnet::jobs::buckle(&s, 2, true, Some("nope"), &Limits::NONE).is_err());
 }
 
 /// A stage may follow its own path under arc length while the rest of the scene stays under

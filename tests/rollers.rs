@@ -3,7 +3,8 @@
 //! general rotation, must give the turned equilibrium: positions, reactions, energy. Plus a
 //! propped cantilever on an inclined roller against linear beam theory.
 
-use rodnet::pipeline::{analyse_modes, settings_of, solve_scene, Solution};
+use rodnet::jobs::analyse_modes;
+use rodnet::pipeline::{settings_of, solve_scene, Solution};
 use rodnet::scene::parse;
 
 type M3 = [[f64; 3]; 3];

@@ -371,7 +371,8 @@ struct Planar {
 /// Solves the ring twisted by Θ (from `from` when given: a few Newton iterations instead of
 /// the closing path) and analyses it; None when the solve left the planar path.
 fn michell_state(r: f64, n: usize, theta: f64, from: Option<&[RodState]>) -> Option<Planar> {
-    use rodnet::pipeline::{analyse_modes, settings_of, solve_scene, solve_scene_from};
+    use rodnet::jobs::analyse_modes;
+    use rodnet::pipeline::{settings_of, solve_scene, solve_scene_from};
     let scene = michell_ring(r, n, theta);
     let settings = settings_of(&scene);
     let mut sol = match from {

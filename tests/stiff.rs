@@ -924,6 +924,7 @@ fn big_gridshell() {
         &spec,
         rodnet::gridshell::formfind::DEFAULT_START_CAP,
         Some(std::sync::Arc::new(progress)),
+        &rodnet::pipeline::Limits::NONE,
     )
     .unwrap();
     let secs = t.elapsed().as_secs_f64();

@@ -7,7 +7,7 @@ use pyo3::exceptions::{PyTypeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::PyDict;
 
-use rodnet::pipeline::{BuckleError, IndentError};
+use rodnet::jobs::{BuckleError, IndentError};
 use rodnet::scene::{self as rscene, FieldError};
 use rodnet::sweep::run::{self, Failure};
 use rodnet::sweep::{path, Job};
@@ -231,7 +231,14 @@ impl Scene {
         let out = py.detach(|| {
             crate::fork_safe(|| {
                 std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-                    rodnet::pipeline::buckle(scene, modes, linear_only, None).map(|b| b.json)
+                    rodnet::jobs::buckle(
+                        scene,
+                        modes,
+                        linear_only,
+                        None,
+                        &rodnet::pipeline::Limits::NONE,
+                    )
+                    .map(|b| b.json)
                 }))
             })
         });
@@ -265,7 +272,15 @@ impl Scene {
         let out = py.detach(|| {
             crate::fork_safe(|| {
                 std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-                    rodnet::pipeline::indent(scene, at, d, depth, steps).map(|i| i.json)
+                    rodnet::jobs::indent(
+                        scene,
+                        at,
+                        d,
+                        depth,
+                        steps,
+                        &rodnet::pipeline::Limits::NONE,
+                    )
+                    .map(|i| i.json)
                 }))
             })
         });
@@ -342,8 +357,10 @@ impl Scene {
         rscene::validate::validate(&sc).map_err(|e| invalid(py, None, "", &e))?;
         let job = Job::Scene(Box::new(sc));
         let outcome = solve_released(py, progress, move |hook| match extrapolate {
-            Some(levels) => run::solve_extrapolated(&job, levels, modes, hook),
-            None => run::solve(&job, modes, hook),
+            Some(levels) => {
+                run::solve_extrapolated(&job, levels, modes, hook, &rodnet::pipeline::Limits::NONE)
+            }
+            None => run::solve(&job, modes, hook, &rodnet::pipeline::Limits::NONE),
         })?;
         match outcome {
             Ok(solved) => Ok(Results::new(solved)),
@@ -361,7 +378,7 @@ pub fn _bench_solve(py: Python<'_>, scene: &Scene, repeat: usize) -> f64 {
     py.detach(|| {
         let t0 = std::time::Instant::now();
         for _ in 0..repeat {
-            let _ = run::solve(&job, None, None);
+            let _ = run::solve(&job, None, None, &rodnet::pipeline::Limits::NONE);
         }
         t0.elapsed().as_secs_f64() / repeat.max(1) as f64
     })

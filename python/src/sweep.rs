@@ -44,7 +44,9 @@ pub fn hemisphere(
     let h = generator::hemisphere(&o)
         .map_err(|(name, m)| scene_error(py, None, None, None, Some(name), &m))?;
     let job = Job::Hemisphere(Box::new(h));
-    let outcome = solve_released(py, progress, move |hook| run::solve(&job, None, hook))?;
+    let outcome = solve_released(py, progress, move |hook| {
+        run::solve(&job, None, hook, &rodnet::pipeline::Limits::NONE)
+    })?;
     results_of(py, outcome)
 }
 
@@ -309,7 +311,13 @@ pub fn fit(
         .display()
         .to_string();
     let outcome = solve_released(py, progress, move |hook| {
-        match job::run(&surface, &mesh, &spec, hook) {
+        match job::run(
+            &surface,
+            &mesh,
+            &spec,
+            hook,
+            &rodnet::pipeline::Limits::NONE,
+        ) {
             Ok(r) => Ok(run::Solved {
                 results: r.results,
                 gridshell: None,

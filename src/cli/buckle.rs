@@ -7,7 +7,7 @@ use clap::Args;
 
 use super::output::{bad, check_outputs, given, EXIT_OK};
 use crate::io::atomic;
-use crate::pipeline::BuckleError;
+use crate::jobs::BuckleError;
 use crate::scene::{self, SceneError};
 
 #[derive(Args, Debug)]
@@ -47,12 +47,17 @@ pub fn run(a: &BuckleArgs) -> i32 {
         Err(e) => return bad(e),
     };
     let label = a.scene.display().to_string();
-    let buckling =
-        match crate::pipeline::buckle(&sc, a.modes as usize, a.linear_only, a.stage.as_deref()) {
-            Ok(b) => b,
-            Err(BuckleError::Scene(e)) => return bad(SceneError::from_field(&label, &src, &e)),
-            Err(BuckleError::Analysis(e)) => return bad(format_args!("{label}: {e}")),
-        };
+    let buckling = match crate::jobs::buckle(
+        &sc,
+        a.modes as usize,
+        a.linear_only,
+        a.stage.as_deref(),
+        &a.limits.values(),
+    ) {
+        Ok(b) => b,
+        Err(BuckleError::Scene(e)) => return bad(SceneError::from_field(&label, &src, &e)),
+        Err(BuckleError::Analysis(e)) => return bad(format_args!("{label}: {e}")),
+    };
     let (net, b, json) = (&buckling.network, &buckling.linear, &buckling.json);
     if !b.converged {
         eprintln!(
@@ -77,7 +82,7 @@ pub fn run(a: &BuckleArgs) -> i32 {
             .collect();
         files.push((
             p,
-            crate::pipeline::modes_obj(net, &labels, &b.modes).into_bytes(),
+            crate::jobs::modes_obj(net, &labels, &b.modes).into_bytes(),
         ));
     }
     if let Err((p, e)) = atomic::write_all(&files) {

@@ -206,7 +206,13 @@ pub(super) fn run(a: FitArgs) -> i32 {
         .display()
         .to_string();
     let tracker = progress::Tracker::begin(1, show_progress(a.quiet));
-    let result = job::run(&surface, &mesh_path, &spec, Some(tracker.hook()));
+    let result = job::run(
+        &surface,
+        &mesh_path,
+        &spec,
+        Some(tracker.hook()),
+        &a.limits.values(),
+    );
     tracker.finish();
     let mut run = match result {
         Ok(r) => r,

@@ -234,7 +234,7 @@ pub(super) fn run(a: HemisphereArgs) -> i32 {
     }
 
     let tracker = progress::Tracker::begin(spec.load_steps, show_progress(a.quiet));
-    let result = gridshell_job::run(&spec, a.start_cap, Some(tracker.hook()));
+    let result = gridshell_job::run(&spec, a.start_cap, Some(tracker.hook()), &a.limits.values());
     tracker.finish();
     let mut run = match result {
         Ok(r) => r,

@@ -8,7 +8,7 @@ use clap::Args;
 use super::output::{bad, check_outputs, given, EXIT_NOT_CONVERGED, EXIT_OK};
 use crate::io::indent::{curve_csv, IndentJson};
 use crate::io::{atomic, curve_plot};
-use crate::pipeline::{self as job, IndentError};
+use crate::jobs::{self as job, IndentError};
 use crate::scene::{self, SceneError};
 
 #[derive(Args, Debug)]
@@ -65,7 +65,14 @@ pub fn run(a: &IndentArgs) -> i32 {
         Err(e) => return bad(e),
     };
     let label = a.scene.display().to_string();
-    let (out, curve) = match job::indent(&sc, &a.at, direction, a.depth, a.steps as usize) {
+    let (out, curve) = match job::indent(
+        &sc,
+        &a.at,
+        direction,
+        a.depth,
+        a.steps as usize,
+        &a.limits.values(),
+    ) {
         Ok(i) => (i.json, i.curve),
         Err(IndentError::Scene(e)) => return bad(SceneError::from_field(&label, &src, &e)),
         Err(IndentError::NotConverged(m)) => {

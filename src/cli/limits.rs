@@ -24,10 +24,12 @@ pub struct LimitArgs {
 }
 
 impl LimitArgs {
-    /// Makes the limits hold for every solve of this process.
-    pub fn apply(&self) {
-        crate::pipeline::set_memory_limit(self.max_memory.unwrap_or_else(default_max_memory));
-        crate::pipeline::set_time_limit(self.time_limit);
+    /// The limits these options ask for, passed down to every solve of the command.
+    pub fn values(&self) -> crate::pipeline::Limits {
+        crate::pipeline::Limits {
+            memory: self.max_memory.unwrap_or_else(default_max_memory),
+            time: self.time_limit,
+        }
     }
 }
 

@@ -136,55 +136,32 @@ pub fn run(cli: Cli) -> i32 {
             quiet,
             network,
             limits,
-        } => {
-            limits.apply();
-            solve::run(
-                scene,
-                solve::Outputs {
-                    results,
-                    modes: modes.map(|k| k as usize),
-                    modes_obj,
-                    initial,
-                    extrapolate: extrapolate.then_some(levels as usize),
-                },
-                quiet,
-                &network,
-            )
-        }
-        Command::Buckle(args) => {
-            args.limits.apply();
-            buckle::run(&args)
-        }
-        Command::Indent(args) => {
-            args.limits.apply();
-            indent::run(&args)
-        }
+        } => solve::run(
+            scene,
+            solve::Outputs {
+                results,
+                modes: modes.map(|k| k as usize),
+                modes_obj,
+                initial,
+                extrapolate: extrapolate.then_some(levels as usize),
+            },
+            quiet,
+            &network,
+            &limits.values(),
+        ),
+        Command::Buckle(args) => buckle::run(&args),
+        Command::Indent(args) => indent::run(&args),
         Command::Gridshell {
             shape: GridshellCommand::Hemisphere(args),
-        } => {
-            args.limits.apply();
-            gridshell::run(args)
-        }
+        } => gridshell::run(args),
         Command::Gridshell {
             shape: GridshellCommand::Fit(args),
-        } => {
-            args.limits.apply();
-            fit::run(args)
-        }
-        Command::States(args) => {
-            args.limits.apply();
-            states::run(&args)
-        }
+        } => fit::run(args),
+        Command::States(args) => states::run(&args),
         Command::Plot(args) => plot::run(&args),
         Command::Study {
             study: StudyCommand::Convergence(args),
-        } => {
-            args.limits.apply();
-            study::run(&args)
-        }
-        Command::Sweep(args) => {
-            args.limits.apply();
-            sweep::run(&args)
-        }
+        } => study::run(&args),
+        Command::Sweep(args) => sweep::run(&args),
     }
 }

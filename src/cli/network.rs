@@ -226,7 +226,8 @@ impl NetworkScene {
 const MAX_OBJ_BYTES: u64 = 1 << 30;
 
 /// Reads the OBJ file and generates the validated scene; errors are full messages.
-pub fn load(path: &std::path::Path, a: &NetworkArgs) -> Result<NetworkScene, String> {
+/// `memory`: the limit (bytes, `u64::MAX`: none) the OBJ's size is checked against.
+pub fn load(path: &std::path::Path, a: &NetworkArgs, memory: u64) -> Result<NetworkScene, String> {
     let file = path.display().to_string();
     let young_modulus = a
         .young_modulus
@@ -253,7 +254,7 @@ pub fn load(path: &std::path::Path, a: &NetworkArgs) -> Result<NetworkScene, Str
     obj_import::size::check(
         &src,
         a.subdivide.unwrap_or(1),
-        crate::pipeline::memory_limit(),
+        memory,
         crate::network::budget::MIN_BYTES_PER_NODE / 2,
         crate::network::budget::bytes_text,
     )

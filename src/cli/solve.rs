@@ -9,7 +9,7 @@ use super::output::{EXIT_BAD_INPUT, EXIT_NOT_CONVERGED, EXIT_OK};
 use super::progress::{self, show_progress};
 use crate::io::atomic;
 use crate::io::formats::Solved;
-use crate::pipeline as job;
+use crate::pipeline::{self as job, Limits};
 use crate::scene::{self, FieldError, Scene, SceneError};
 
 /// The result files asked for.
@@ -85,6 +85,7 @@ pub(super) fn run(
     outputs: Outputs,
     quiet: bool,
     network: &NetworkArgs,
+    limits: &Limits,
 ) -> i32 {
     match (scene, &network.network) {
         (Some(path), _) => match network.first_given() {
@@ -93,15 +94,15 @@ pub(super) fn run(
                  scene file {} (edit the scene instead)",
                 path.display()
             )),
-            None => solve(&path, outputs, quiet),
+            None => solve(&path, outputs, quiet, limits),
         },
-        (None, Some(net)) => solve_network(net, network, outputs, quiet),
+        (None, Some(net)) => solve_network(net, network, outputs, quiet, limits),
         // clap requires one of the two.
         (None, None) => EXIT_BAD_INPUT,
     }
 }
 
-fn solve(path: &Path, outputs: Outputs, quiet: bool) -> i32 {
+fn solve(path: &Path, outputs: Outputs, quiet: bool, limits: &Limits) -> i32 {
     let mut inputs = vec![path];
     inputs.extend(outputs.initial.as_deref());
     if let Err(e) = check_outputs(&outputs.list(), &inputs) {
@@ -141,10 +142,23 @@ fn solve(path: &Path, outputs: Outputs, quiet: bool) -> i32 {
         eprintln!("warning: {}", SceneError::from_field(&file, &src, &w));
     }
     let source = Source::Scene { file, src };
-    solve_and_write(&path.display().to_string(), &sc, &source, outputs, quiet)
+    solve_and_write(
+        &path.display().to_string(),
+        &sc,
+        &source,
+        outputs,
+        quiet,
+        limits,
+    )
 }
 
-fn solve_network(path: &Path, args: &NetworkArgs, outputs: Outputs, quiet: bool) -> i32 {
+fn solve_network(
+    path: &Path,
+    args: &NetworkArgs,
+    outputs: Outputs,
+    quiet: bool,
+    limits: &Limits,
+) -> i32 {
     let mut all = outputs.list();
     if let Some(p) = &args.scene_out {
         all.push(("--scene-out", p));
@@ -154,7 +168,7 @@ fn solve_network(path: &Path, args: &NetworkArgs, outputs: Outputs, quiet: bool)
     if let Err(e) = check_outputs(&all, &inputs) {
         return bad(e);
     }
-    let net = match network::load(path, args) {
+    let net = match network::load(path, args, limits.memory) {
         Ok(n) => n,
         Err(e) => return bad(e),
     };
@@ -179,11 +193,19 @@ fn solve_network(path: &Path, args: &NetworkArgs, outputs: Outputs, quiet: bool)
         &Source::Network(Box::new(net)),
         outputs,
         quiet,
+        limits,
     )
 }
 
-fn solve_and_write(label: &str, sc: &Scene, source: &Source, outputs: Outputs, quiet: bool) -> i32 {
-    let mut settings = job::settings_of(sc);
+fn solve_and_write(
+    label: &str,
+    sc: &Scene,
+    source: &Source,
+    outputs: Outputs,
+    quiet: bool,
+    limits: &Limits,
+) -> i32 {
+    let mut settings = limits.settings_of(sc);
     let tracker = progress::Tracker::begin(settings.load_steps, show_progress(quiet));
     settings.progress = Some(tracker.hook());
     let mut stage_error = None;
@@ -232,7 +254,7 @@ fn solve_and_write(label: &str, sc: &Scene, source: &Source, outputs: Outputs, q
         return bad(e);
     }
     let modes = match outputs.modes {
-        Some(k) if sol.results.all_finite() => match job::analyse_modes(&mut sol, k) {
+        Some(k) if sol.results.all_finite() => match crate::jobs::analyse_modes(&mut sol, k) {
             Ok(st) => Some(st),
             Err(e) => return bad(format_args!("{label}: eigen-analysis: {e}")),
         },
@@ -274,7 +296,7 @@ fn solve_and_write(label: &str, sc: &Scene, source: &Source, outputs: Outputs, q
             .collect();
         files.push((
             p.clone(),
-            job::modes_obj(&sol.network, &labels, &st.modes).into_bytes(),
+            crate::jobs::modes_obj(&sol.network, &labels, &st.modes).into_bytes(),
         ));
     }
     if let Err(e) = write_files(&files) {

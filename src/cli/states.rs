@@ -7,7 +7,7 @@ use clap::Args;
 use super::output::{bad, check_outputs_creating, EXIT_OK};
 use crate::io::atomic;
 use crate::io::states::{StateJson, StatesJson};
-use crate::pipeline::{self, JobError};
+use crate::pipeline::JobError;
 use crate::scene::{self, SceneError};
 
 #[derive(Args, Debug)]
@@ -50,8 +50,8 @@ pub fn run(a: &StatesArgs) -> i32 {
     ) {
         return bad(e);
     }
-    let settings = pipeline::settings_of(&sc);
-    let found = match pipeline::states(&sc, &settings, a.max as usize) {
+    let settings = a.limits.values().settings_of(&sc);
+    let found = match crate::jobs::states(&sc, &settings, a.max as usize) {
         Ok(f) => f,
         Err(JobError::Scene(e)) => return bad(SceneError::from_field(&label, &src, &e)),
         Err(JobError::Refused(m)) => return bad(format_args!("{label}: {m}")),

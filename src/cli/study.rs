@@ -121,7 +121,7 @@ pub fn run(a: &ConvergenceArgs) -> i32 {
             Err(e) => return bad(e),
         },
     };
-    let plan = match plan(&problem, a.levels) {
+    let plan = match plan(&problem, a.levels, &a.limits.values()) {
         Ok(p) => p,
         Err(e) => return bad(e),
     };

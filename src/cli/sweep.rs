@@ -50,10 +50,11 @@ pub(super) fn run(a: &SweepArgs) -> i32 {
     let Some(file) = &a.sweep else {
         return bad("a sweep file is required");
     };
-    let sweep = match Sweep::load(file) {
+    let mut sweep = match Sweep::load(file) {
         Ok(s) => s,
         Err(e) => return bad(e),
     };
+    sweep.limits = a.limits.values();
     if let Some(emit) = &a.emit {
         return match (emit[0].as_str(), std::env::current_exe()) {
             ("slurm", Ok(exe)) => match slurm::emit(&sweep, &exe, std::path::Path::new(&emit[1])) {

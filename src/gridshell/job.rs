@@ -10,7 +10,7 @@ use crate::gridshell::formfind::{form_find, FormFinding};
 use crate::gridshell::report::{shape_metrics, ShapeMetrics};
 use crate::io::results::Results;
 use crate::network::Network;
-use crate::pipeline::{self, settings_of};
+use crate::pipeline::{self, Limits};
 use crate::scene::types::Section;
 use crate::scene::FieldError;
 use crate::solver::Progress;
@@ -33,11 +33,12 @@ pub fn run(
     spec: &HemisphereSpec,
     start_cap: f64,
     progress: Option<Progress>,
+    limits: &Limits,
 ) -> Result<HemisphereRun, FieldError> {
     let t0 = Instant::now();
     let fp = footprint(spec);
     crate::scene::validate::validate(&fp.scene)?;
-    let mut settings = settings_of(&fp.scene);
+    let mut settings = limits.settings_of(&fp.scene);
     settings.progress = progress;
     let mut form = None;
     let mut metrics = None;

@@ -121,6 +121,20 @@ pub fn push(
     how: &Push,
     settings: &NewtonSettings,
 ) -> Result<Curve, String> {
+    push_built(scene, solved, how, settings, |s| {
+        crate::network::build(s).map_err(|e| e.message)
+    })
+}
+
+/// [`push`] with the pushed scene's network built by `build` (the pipeline's build within the
+/// job's limits), which says why it could not be.
+pub fn push_built(
+    scene: &Scene,
+    solved: &Network,
+    how: &Push,
+    settings: &NewtonSettings,
+    build: impl FnOnce(&Scene) -> Result<Network, String>,
+) -> Result<Curve, String> {
     let t0 = Instant::now();
     let node = solved
         .rod(&how.rod)
@@ -140,8 +154,8 @@ pub fn push(
         move_to: None,
         rotate_by: None,
     });
-    let mut net = crate::network::build(&staged_scene)
-        .map_err(|e| format!("the pushed scene could not be built: {}", e.message))?;
+    let mut net =
+        build(&staged_scene).map_err(|m| format!("the pushed scene could not be built: {m}"))?;
     if net.model.state.q.len() != solved.model.state.q.len() {
         return Err("the pushed scene's variables differ from the solved scene's".into());
     }

@@ -29,6 +29,10 @@ pub struct NewtonSettings {
     /// solve made with these settings or their clones (a restart and its solve from rest,
     /// stages, extrapolation levels) shares one budget instead of each starting its own.
     pub deadline: Option<Instant>,
+    /// Bytes the solve may take (`u64::MAX`: none): its caller checks a scene against it before
+    /// building (`pipeline::build_within_limit`); carried here so every build of one job sees
+    /// the same limit.
+    pub memory_limit: u64,
     /// Solve at the end of the path (λ = 1) from the current state, without a path.
     pub equilibrate_only: bool,
     /// How the path from λ = 0 to 1 is followed.
@@ -67,6 +71,7 @@ impl Default for NewtonSettings {
             ordering: super::Ordering::Auto,
             time_limit: None,
             deadline: None,
+            memory_limit: u64::MAX,
             equilibrate_only: false,
             continuation: Continuation::Load,
             intermediate: false,
@@ -119,6 +124,10 @@ impl NewtonSettings {
         self.time_limit = seconds;
         self.deadline =
             seconds.map(|t| Instant::now() + Duration::from_secs_f64(t.clamp(0.0, 1e9)));
+        self
+    }
+    pub fn memory_limit(mut self, bytes: u64) -> Self {
+        self.memory_limit = bytes;
         self
     }
     pub fn continuation(mut self, c: Continuation) -> Self {

@@ -14,7 +14,7 @@ use crate::gridshell::footprint::{footprint, HemisphereSpec};
 use crate::gridshell::job as gridshell_job;
 use crate::math::vec::{norm, sub};
 use crate::network::Network;
-use crate::pipeline::{self, settings_of};
+use crate::pipeline::{self, Limits};
 use crate::scene::{validate, FieldError, Scene, SceneError};
 use crate::solver::{Ordering, Progress};
 use crate::study::richardson::{self, Extrapolation};
@@ -78,6 +78,8 @@ pub struct Plan {
     /// Rest position of each probe.
     rest: Vec<[f64; 3]>,
     pub reference: Option<ReferenceInfo>,
+    /// The limits every level was checked against in [`plan`] and is solved within.
+    limits: Limits,
 }
 
 /// One solved level.
@@ -115,7 +117,7 @@ impl Level {
 
 /// Checks the levels, and generates, validates and builds every level's scene, so that bad input
 /// (including a level over the node limit) is refused before anything is solved.
-pub fn plan(problem: &Problem, levels: usize) -> Result<Plan, String> {
+pub fn plan(problem: &Problem, levels: usize, limits: &Limits) -> Result<Plan, String> {
     let has_reference =
         matches!(problem, Problem::Scene { scene, .. } if scene.reference.is_some());
     let min = if has_reference { 2 } else { 3 };
@@ -166,7 +168,7 @@ pub fn plan(problem: &Problem, levels: usize) -> Result<Plan, String> {
             }
             // The memory lower bound of every level, before any level is built.
             for (i, s) in scenes.iter().enumerate() {
-                pipeline::check_scene_memory(s).map_err(|e| describe(i + 1, &e))?;
+                pipeline::check_scene_memory(s, limits.memory).map_err(|e| describe(i + 1, &e))?;
             }
             // The builder checks what depends on the nodes (joint positions, hinge axes, rest
             // shape outside the obstacles), and finer levels have new nodes. It allocates, so it
@@ -174,7 +176,8 @@ pub fn plan(problem: &Problem, levels: usize) -> Result<Plan, String> {
             // Each level is also checked against the memory limit here, so that no solve is
             // refused once the study has begun.
             for (i, s) in scenes.iter().enumerate() {
-                pipeline::build_within_limit(s, Ordering::Auto).map_err(|e| describe(i + 1, &e))?;
+                pipeline::build_within_limit(s, Ordering::Auto, limits.memory)
+                    .map_err(|e| describe(i + 1, &e))?;
             }
             let (mut probes, mut rest) = (Vec::new(), Vec::new());
             for r in &scene.rods {
@@ -203,6 +206,7 @@ pub fn plan(problem: &Problem, levels: usize) -> Result<Plan, String> {
                 probes,
                 rest,
                 reference,
+                limits: *limits,
             })
         }
         Problem::Hemisphere { spec, start_cap } => {
@@ -226,14 +230,15 @@ pub fn plan(problem: &Problem, levels: usize) -> Result<Plan, String> {
                     .ok_or_else(|| format!("--subdivide overflows at {}", at(level)))?;
                 let fp = footprint(&s);
                 validate::validate(&fp.scene)
-                    .and_then(|_| pipeline::check_scene_memory(&fp.scene))
+                    .and_then(|_| pipeline::check_scene_memory(&fp.scene, limits.memory))
                     .map_err(|e| invalid(level, &e))?;
                 scenes.push(fp.scene);
                 specs.push(s);
             }
             // Built once every level has passed the cheap checks (the builder allocates).
             for (i, s) in scenes.iter().enumerate() {
-                pipeline::build_within_limit(s, Ordering::Auto).map_err(|e| invalid(i + 1, &e))?;
+                pipeline::build_within_limit(s, Ordering::Auto, limits.memory)
+                    .map_err(|e| invalid(i + 1, &e))?;
             }
             let base = scenes.into_iter().next();
             // The crossings are the same at every level; their rest places are in the
@@ -266,6 +271,7 @@ pub fn plan(problem: &Problem, levels: usize) -> Result<Plan, String> {
                 probes,
                 rest,
                 reference: None,
+                limits: *limits,
             })
         }
     }
@@ -320,7 +326,7 @@ impl Plan {
         let (network, results, seconds, reference_error) = match &self.levels {
             Levels::Scenes(scenes) => {
                 let scene = &scenes[index];
-                let mut settings = settings_of(scene);
+                let mut settings = self.limits.settings_of(scene);
                 settings.progress = progress;
                 let mut seconds = 0.0;
                 // `plan` built every level, and building is deterministic.
@@ -341,7 +347,7 @@ impl Plan {
                 (solution.network, solution.results, seconds, reference_error)
             }
             Levels::Hemisphere { specs, start_cap } => {
-                let run = gridshell_job::run(&specs[index], *start_cap, progress)
+                let run = gridshell_job::run(&specs[index], *start_cap, progress, &self.limits)
                     .expect("built in `plan`");
                 // The form finding's own clock: the cap start and the solve.
                 let seconds = run.form.seconds;

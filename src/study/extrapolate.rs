@@ -68,7 +68,7 @@ pub fn solve_levels(
     };
     // The finest level is the largest: its lower bound is checked before any solve.
     let finest = (1..levels).fold(scene.clone(), |s, _| refined(&s));
-    pipeline::check_scene_memory(&finest)
+    pipeline::check_scene_memory(&finest, settings.memory_limit)
         .map_err(JobError::Scene)
         .map_err(at_level(levels - 1))?;
     let t0 = Instant::now();

@@ -95,6 +95,9 @@ pub struct Sweep {
     pub points: Vec<Point>,
     pub quantities: Vec<String>,
     pub output: PathBuf,
+    /// How much of the machine each point's solve may take (none unless the caller sets them:
+    /// `rodnet sweep` from its options).
+    pub limits: crate::pipeline::Limits,
 }
 
 /// A sweep error, located in the sweep file where it can be.
@@ -213,6 +216,7 @@ impl Sweep {
             points,
             quantities,
             output,
+            limits: crate::pipeline::Limits::NONE,
         };
         for p in &sweep.points {
             sweep.job(p.index)?;

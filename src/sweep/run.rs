@@ -10,7 +10,7 @@ use serde_json::{json, Value as Json};
 use super::{Job, Sweep};
 use crate::gridshell::job::{self as gridshell_job, GridshellJson};
 use crate::io::results::Results;
-use crate::pipeline;
+use crate::pipeline::{self, Limits};
 use crate::scene::{FieldError, SceneError};
 use crate::solver::Progress;
 
@@ -57,8 +57,9 @@ pub fn solve(
     job: &Job,
     modes: Option<usize>,
     progress: Option<Progress>,
+    limits: &Limits,
 ) -> Result<Solved, Failure> {
-    solve_levels(job, None, modes, progress)
+    solve_levels(job, None, modes, progress, limits)
 }
 
 /// [`solve`] of a scene at `levels` (2 or 3) subdivisions, extrapolated (`study::extrapolate`,
@@ -68,8 +69,9 @@ pub fn solve_extrapolated(
     levels: usize,
     modes: Option<usize>,
     progress: Option<Progress>,
+    limits: &Limits,
 ) -> Result<Solved, Failure> {
-    solve_levels(job, Some(levels), modes, progress)
+    solve_levels(job, Some(levels), modes, progress, limits)
 }
 
 fn solve_levels(
@@ -77,10 +79,11 @@ fn solve_levels(
     extrapolate: Option<usize>,
     modes: Option<usize>,
     progress: Option<Progress>,
+    limits: &Limits,
 ) -> Result<Solved, Failure> {
     let (results, gridshell) = match job {
         Job::Scene(scene) => {
-            let mut settings = pipeline::settings_of(scene);
+            let mut settings = limits.settings_of(scene);
             settings.progress = progress;
             let mut sol = match extrapolate {
                 None => pipeline::solve_scene(scene, &settings).map_err(Failure::Scene)?,
@@ -91,7 +94,7 @@ fn solve_levels(
                 })?,
             };
             if let (Some(k), true) = (modes, sol.results.all_finite()) {
-                pipeline::analyse_modes(&mut sol, k)
+                crate::jobs::analyse_modes(&mut sol, k)
                     .map_err(|e| Failure::Solve(format!("eigen-analysis: {e}")))?;
             }
             (sol.results, None)
@@ -102,13 +105,14 @@ fn solve_levels(
             ));
         }
         Job::Hemisphere(h) => {
-            let mut run = gridshell_job::run(&h.spec, h.start_cap, progress).map_err(|e| {
-                Failure::Solve(format!(
-                    "the generated scene is invalid: {}: {}",
-                    e.path(),
-                    e.message
-                ))
-            })?;
+            let mut run =
+                gridshell_job::run(&h.spec, h.start_cap, progress, limits).map_err(|e| {
+                    Failure::Solve(format!(
+                        "the generated scene is invalid: {}: {}",
+                        e.path(),
+                        e.message
+                    ))
+                })?;
             if let (Some(k), true) = (h.modes.or(modes), run.results.all_finite()) {
                 let st = crate::network::stability::analyse(&mut run.network, k)
                     .map_err(|e| Failure::Solve(format!("eigen-analysis: {e}")))?;
@@ -223,7 +227,7 @@ impl Sweep {
         let t0 = Instant::now();
         let solved = self.job(i).map_err(|e| e.to_string()).and_then(|job| {
             std::panic::catch_unwind(std::panic::AssertUnwindSafe(|| {
-                solve(&job, None, None).map_err(|f| f.to_string())
+                solve(&job, None, None, &self.limits).map_err(|f| f.to_string())
             }))
             .unwrap_or_else(|p| Err(format!("internal error: {}", panic_message(&*p))))
         });

@@ -181,17 +181,14 @@ pub fn seed(s: &Surface, spec: &FitSpec) -> Result<Seed, String> {
 }
 
 /// Builds the net and its footprint scene; `mesh_path` is written into the scene's target.
+/// `memory`: the limit (bytes, `u64::MAX`: none) the construction grid is sized within.
 pub fn footprint(
     surface: &Arc<Surface>,
     mesh_path: &str,
     spec: &FitSpec,
+    memory: u64,
 ) -> Result<FitFootprint, String> {
-    let max_grid = super::size::check(
-        surface,
-        spec.spacing,
-        spec.subdivide,
-        crate::pipeline::memory_limit(),
-    )?;
+    let max_grid = super::size::check(surface, spec.spacing, spec.subdivide, memory)?;
     let seed = seed(surface, spec)?;
     let net = net::build(
         surface,

@@ -20,7 +20,7 @@ use crate::io::results::Results;
 use crate::math::vec::{dot, norm, sub};
 use crate::network::equilibrium::NetBlock;
 use crate::network::{Network, NetworkProblem};
-use crate::pipeline::{self, settings_of};
+use crate::pipeline::{self, Limits};
 use crate::scene::FieldError;
 use crate::solver::{NewtonReport, NewtonSettings, Progress};
 use crate::surface::Surface;
@@ -50,12 +50,13 @@ pub fn run(
     mesh_path: &str,
     spec: &FitSpec,
     progress: Option<Progress>,
+    limits: &Limits,
 ) -> Result<FitRun, FitError> {
     let t0 = Instant::now();
-    let fp = footprint(surface, mesh_path, spec).map_err(FitError::Net)?;
+    let fp = footprint(surface, mesh_path, spec, limits.memory).map_err(FitError::Net)?;
     crate::scene::validate::validate(&fp.scene).map_err(FitError::Scene)?;
     let net_seconds = t0.elapsed().as_secs_f64();
-    let mut settings = settings_of(&fp.scene);
+    let mut settings = limits.settings_of(&fp.scene);
     settings.progress = progress;
     let mut from_net = true;
     let mut form_seconds = 0.0;
