@@ -171,3 +171,87 @@ fn lower_layers_import_nothing_above_them() {
     }
     assert!(bad.is_empty(), "layer violations:\n{}", bad.join("\n"));
 }
+
+/// The modules of `network/` (by file or folder) that module `m` names, through
+/// `crate::network::X` or `super::X` (`super::super::X` inside a folder), outside comments and
+/// its tests.
+fn network_uses(text: &str, in_folder: bool) -> BTreeSet<String> {
+    let code = match text.find("#[cfg(test)]\nmod tests") {
+        Some(i) => &text[..i],
+        None => text,
+    };
+    let code: String = code
+        .lines()
+        .filter(|l| !l.trim_start().starts_with("//"))
+        .collect::<Vec<_>>()
+        .join("\n");
+    let prefixes: &[&str] = if in_folder {
+        &["crate::network::", "super::super::"]
+    } else {
+        &["crate::network::", "super::"]
+    };
+    let mut out = BTreeSet::new();
+    for p in prefixes {
+        for (i, _) in code.match_indices(p) {
+            let name: String = code[i + p.len()..]
+                .chars()
+                .take_while(|c| c.is_ascii_alphanumeric() || *c == '_')
+                .collect();
+            out.insert(name);
+        }
+    }
+    out
+}
+
+/// `network/`'s modules form no import cycle (docs/architecture.md): each may use those below
+/// it, never one that uses it back.
+#[test]
+fn network_modules_have_no_cycle() {
+    let root = Path::new(env!("CARGO_MANIFEST_DIR")).join("src/network");
+    let mut graph: std::collections::BTreeMap<String, BTreeSet<String>> = Default::default();
+    let mut files = Vec::new();
+    sources(&root, &mut files);
+    for f in &files {
+        let rel = f.strip_prefix(&root).unwrap();
+        let top = rel
+            .components()
+            .next()
+            .unwrap()
+            .as_os_str()
+            .to_string_lossy()
+            .trim_end_matches(".rs")
+            .to_string();
+        if top == "mod" {
+            continue;
+        }
+        let text = std::fs::read_to_string(f).unwrap();
+        let uses = network_uses(&text, rel.components().count() > 1);
+        graph.entry(top.clone()).or_default().extend(uses);
+    }
+    let names: BTreeSet<String> = graph.keys().cloned().collect();
+    for v in graph.values_mut() {
+        v.retain(|d| names.contains(d));
+    }
+    let reaches = |from: &str, to: &str| {
+        let mut stack = vec![from.to_string()];
+        let mut seen = BTreeSet::new();
+        while let Some(v) = stack.pop() {
+            for w in &graph[&v] {
+                if w == to {
+                    return true;
+                }
+                if seen.insert(w.clone()) {
+                    stack.push(w.clone());
+                }
+            }
+        }
+        false
+    };
+    let cycles: Vec<String> = graph
+        .iter()
+        .flat_map(|(a, ds)| ds.iter().filter(move |b| *b != a).map(move |b| (a, b)))
+        .filter(|(a, b)| reaches(b, a))
+        .map(|(a, b)| format!("network::{a} uses network::{b}, which leads back to it"))
+        .collect();
+    assert!(cycles.is_empty(), "{}", cycles.join("\n"));
+}

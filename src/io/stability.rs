@@ -5,8 +5,9 @@ use std::fmt::Write;
 
 use serde::{Deserialize, Serialize};
 
+use crate::network::path_check::PathCritical;
 pub use crate::network::stability::Shape;
-use crate::network::stability::{LinearBuckling, PathCritical, Stability};
+use crate::network::stability::{LinearBuckling, Stability};
 
 #[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct ZeroModesJson {
@@ -74,7 +75,7 @@ pub struct BucklingModeJson {
     pub rods: Vec<ModeRodJson>,
 }
 
-/// The check of the first factor along the nonlinear path (`network::stability::critical_on_path`).
+/// The check of the first factor along the nonlinear path (`network::path_check::critical_on_path`).
 #[derive(Debug, Clone, Serialize, Deserialize)]
 pub struct PathJson {
     /// Where the lowest eigenvalue of the tangent stiffness crosses zero along the load path

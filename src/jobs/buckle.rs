@@ -51,9 +51,9 @@ pub fn buckle(
         .map(|m| stability::mode_shape(&net, m, MODE_AMPLITUDE))
         .collect();
     let path = match b.factors.first() {
-        Some(&first) if !linear_only => {
-            Some(stability::critical_on_path(&mut net, &settings, first))
-        }
+        Some(&first) if !linear_only => Some(crate::network::path_check::critical_on_path(
+            &mut net, &settings, first,
+        )),
         _ => None,
     };
     let mut json = crate::io::stability::BucklingJson::new(&b, &rest, &shapes);

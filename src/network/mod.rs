@@ -29,6 +29,7 @@ pub mod stage;
 pub mod states;
 pub mod support;
 pub mod symmetry_break;
+pub mod zero_stiffness;
 
 pub use build::build;
 pub use info::{Gauge, JointInfo, RodInfo, SupportInfo};

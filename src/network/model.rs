@@ -11,7 +11,7 @@ use crate::energy::{Category, Term};
 use crate::math::vec::{norm, normalize, scalef, sub, transport};
 use crate::network::contact::Contact;
 use crate::network::roller::{Rollers, SlantedRoller};
-use crate::network::scratch::Scratch;
+use crate::network::scratch::{Scratch, MAX_CATEGORIES};
 use crate::rod::frames::EdgeRef;
 use crate::solver::linalg::AnalysisCache;
 use crate::variables::{DofLayout, FrameRef, State, Unknowns, VarKind};
@@ -615,9 +615,6 @@ impl Model {
         }
     }
 }
-
-/// The most categories one kind of term reports ([`Term::CATEGORIES`]).
-pub(super) const MAX_CATEGORIES: usize = 2;
 
 /// Terms (or edges) per block of a parallel sweep: energies are summed per block in parallel
 /// and the blocks' sums added in order, so the total does not depend on the number of threads;

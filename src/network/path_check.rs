@@ -5,7 +5,7 @@
 //! factor is no buckling load).
 
 use super::problem::NetworkProblem;
-use super::stability::mean_edge;
+use super::zero_stiffness::mean_edge;
 use super::Network;
 use crate::solver::path_events::EventKind;
 use crate::solver::problem::{ContinuationPath, Snapshots};

@@ -493,7 +493,7 @@ impl Mechanisms for NetworkProblem<'_> {
         crate::network::mechanism::deforms(self.model, self.rods, mode)
     }
     fn zero_stiffness(&mut self) -> f64 {
-        crate::network::stability::zero_stiffness(self.model, self.rods)
+        crate::network::zero_stiffness::zero_stiffness(self.model, self.rods)
     }
 }
 

@@ -1,11 +1,12 @@
-//! Buffers a [`super::model::Model`] reuses across assemblies and commits, so that Newton
+//! Buffers a `Model` reuses across assemblies and commits, so that Newton
 //! iterations do not allocate: the per-term results of each term kind (their types differ by
 //! kind, hence the type-erased slots) and the reference twists a commit remembers.
 
 use std::any::Any;
 use std::sync::{Mutex, MutexGuard};
 
-use super::model::MAX_CATEGORIES;
+/// The most categories one kind of term reports (`energy::Term::CATEGORIES`).
+pub(super) const MAX_CATEGORIES: usize = 2;
 
 /// Not state: a clone starts with empty buffers.
 #[derive(Default)]
