@@ -236,7 +236,7 @@ impl Scene {
                         modes,
                         linear_only,
                         None,
-                        &rodnet::pipeline::Limits::NONE,
+                        &rodnet::pipeline::Limits::machine(),
                     )
                     .map(|b| b.json)
                 }))
@@ -278,7 +278,7 @@ impl Scene {
                         d,
                         depth,
                         steps,
-                        &rodnet::pipeline::Limits::NONE,
+                        &rodnet::pipeline::Limits::machine(),
                     )
                     .map(|i| i.json)
                 }))
@@ -357,10 +357,14 @@ impl Scene {
         rscene::validate::validate(&sc).map_err(|e| invalid(py, None, "", &e))?;
         let job = Job::Scene(Box::new(sc));
         let outcome = solve_released(py, progress, move |hook| match extrapolate {
-            Some(levels) => {
-                run::solve_extrapolated(&job, levels, modes, hook, &rodnet::pipeline::Limits::NONE)
-            }
-            None => run::solve(&job, modes, hook, &rodnet::pipeline::Limits::NONE),
+            Some(levels) => run::solve_extrapolated(
+                &job,
+                levels,
+                modes,
+                hook,
+                &rodnet::pipeline::Limits::machine(),
+            ),
+            None => run::solve(&job, modes, hook, &rodnet::pipeline::Limits::machine()),
         })?;
         match outcome {
             Ok(solved) => Ok(Results::new(solved)),
@@ -378,7 +382,7 @@ pub fn _bench_solve(py: Python<'_>, scene: &Scene, repeat: usize) -> f64 {
     py.detach(|| {
         let t0 = std::time::Instant::now();
         for _ in 0..repeat {
-            let _ = run::solve(&job, None, None, &rodnet::pipeline::Limits::NONE);
+            let _ = run::solve(&job, None, None, &rodnet::pipeline::Limits::machine());
         }
         t0.elapsed().as_secs_f64() / repeat.max(1) as f64
     })

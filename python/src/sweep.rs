@@ -45,7 +45,7 @@ pub fn hemisphere(
         .map_err(|(name, m)| scene_error(py, None, None, None, Some(name), &m))?;
     let job = Job::Hemisphere(Box::new(h));
     let outcome = solve_released(py, progress, move |hook| {
-        run::solve(&job, None, hook, &rodnet::pipeline::Limits::NONE)
+        run::solve(&job, None, hook, &rodnet::pipeline::Limits::machine())
     })?;
     results_of(py, outcome)
 }
@@ -316,7 +316,7 @@ pub fn fit(
             &mesh,
             &spec,
             hook,
-            &rodnet::pipeline::Limits::NONE,
+            &rodnet::pipeline::Limits::machine(),
         ) {
             Ok(r) => Ok(run::Solved {
                 results: r.results,

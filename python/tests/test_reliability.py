@@ -216,3 +216,31 @@ def test_a_callbacks_exception_still_stops_the_solve(cantilever_dict):
     with pytest.raises(Enough):
         rodnet.Scene.from_dict(cantilever_dict).solve(progress=progress)
     assert seen == [0, 1, 2]
+
+
+LIMITED = textwrap.dedent(
+    """
+    import resource, sys
+    import rodnet
+    # A process allowed 768 MiB of data: its solves take half of it, as the CLI's --max-memory
+    # default does, and a gridshell estimated above that is refused before it is allocated.
+    cap = 768 << 20
+    resource.setrlimit(resource.RLIMIT_DATA, (cap, resource.getrlimit(resource.RLIMIT_DATA)[1]))
+    try:
+        rodnet.gridshell.hemisphere(rods=100, subdivide=8)
+        print("solved")
+    except (rodnet.SceneError, rodnet.SolveError) as e:
+        print("refused", e)
+    """
+)
+
+
+def test_python_solves_take_the_processs_memory_limit(tmp_path):
+    script = tmp_path / "limited.py"
+    script.write_text(LIMITED)
+    out = subprocess.run(
+        [sys.executable, str(script)], capture_output=True, text=True, timeout=120
+    )
+    assert out.returncode == 0, out.stdout + out.stderr
+    assert out.stdout.startswith("refused"), out.stdout + out.stderr
+    assert "memory" in out.stdout, out.stdout

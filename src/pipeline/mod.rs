@@ -2,6 +2,8 @@
 //! Commands differ only in how they solve (plain Newton, or a gridshell's form finding) and in
 //! what they add to the measurements; both are passed in.
 
+pub mod machine;
+
 use crate::io::results::{Results, StageJson};
 use crate::network::budget;
 use crate::network::equilibrium::Equilibrium;
@@ -34,6 +36,15 @@ impl Limits {
         memory: u64::MAX,
         time: None,
     };
+
+    /// The default limits of a run: half of the memory this process may take
+    /// ([`machine::default_max_memory`]), the scenes' own time limits.
+    pub fn machine() -> Limits {
+        Limits {
+            memory: machine::default_max_memory(),
+            time: None,
+        }
+    }
 
     /// The solver settings a scene asks for, within these limits (the memory limit travels
     /// with them to every build of the pipeline).
