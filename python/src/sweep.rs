@@ -96,7 +96,8 @@ impl Sweep {
     /// Reads and checks a sweep file (RON).
     #[staticmethod]
     fn load(py: Python<'_>, path: PathBuf) -> PyResult<Sweep> {
-        let sweep = rodnet::sweep::Sweep::load(&path).map_err(|e| sweep_error(py, &e))?;
+        let mut sweep = rodnet::sweep::Sweep::load(&path).map_err(|e| sweep_error(py, &e))?;
+        sweep.limits = rodnet::pipeline::Limits::machine();
         Ok(Sweep {
             sweep,
             default_output: path.file_stem().map(|s| s.to_string_lossy().into_owned()),
@@ -113,13 +114,14 @@ impl Sweep {
         base_dir: PathBuf,
         default_output: Option<String>,
     ) -> PyResult<Sweep> {
-        let sweep = rodnet::sweep::Sweep::parse(
+        let mut sweep = rodnet::sweep::Sweep::parse(
             file,
             text,
             &base_dir,
             default_output.clone().map(PathBuf::from),
         )
         .map_err(|e| sweep_error(py, &e))?;
+        sweep.limits = rodnet::pipeline::Limits::machine();
         Ok(Sweep {
             sweep,
             default_output,
