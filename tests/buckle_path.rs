@@ -74,3 +74,79 @@ fn a_clean_bifurcation_has_its_path_value_and_a_stable_path_none() {
     assert_eq!(path.kind, "no_buckling", "{path:?}");
     assert!(path.critical_load_factor.is_none());
 }
+
+/// A fixed-base portal (columns 3 m, beam 4 m, steel tubes r = 5 cm, rigid corners) under a
+/// 10 kN lateral load at a corner: the load puts the columns in ±H·h/L of axial force, about 1 %
+/// of their Euler loads even at the linear factor (3.18), so the stiffness hardly changes along
+/// the path (the lowest eigenvalue moves by under 0.1 %): "no_buckling", no critical factor (it
+/// was "imperfect_bifurcation" from a 0.03 % dip). A column whose axial load carries a small
+/// lateral one, by contrast, is softened to a fraction of its stiffness before its path turns:
+/// "imperfect_bifurcation".
+#[test]
+fn a_stiffness_the_loads_barely_touch_is_no_buckling_and_a_real_dip_is_imperfect() {
+    let steel = |r: f64| Material {
+        young_modulus: 2.1e11,
+        poisson_ratio: Some(0.3),
+        shear_modulus: None,
+        density: 0.0,
+        section: Section::Circle { radius: r },
+        yield_strength: None,
+    };
+    let mut s = scene(
+        steel(0.05),
+        vec![
+            rod("left", vec![[0.0; 3], [0.0, 0.0, 3.0]], 20),
+            rod("beam", vec![[0.0, 0.0, 3.0], [4.0, 0.0, 3.0]], 20),
+            rod("right", vec![[4.0, 0.0, 0.0], [4.0, 0.0, 3.0]], 20),
+        ],
+    );
+    let joint = |name: &str, a: (&str, usize), b: (&str, usize)| Joint {
+        name: name.into(),
+        at: vec![(a.0.into(), a.1), (b.0.into(), b.1)],
+        kind: JointKind::Rigid,
+        normal: None,
+    };
+    s.joints = vec![
+        joint("a", ("left", 1), ("beam", 0)),
+        joint("b", ("beam", 1), ("right", 1)),
+    ];
+    let force = |rod: &str, f: [f64; 3]| Load::Force {
+        rod: rod.into(),
+        vertex: 1,
+        force: f,
+    };
+    s.supports = vec![
+        support("left", 0, SupportKind::Clamp),
+        support("right", 0, SupportKind::Clamp),
+    ];
+    s.loads = vec![force("left", [1e4, 0.0, 0.0])];
+    let b = buckle(&s, 2, false, None, &Limits::NONE).unwrap_or_else(|_| panic!());
+    let path = b.json.path.as_ref().unwrap();
+    println!("portal: {path:?}");
+    assert_eq!(path.kind, "no_buckling", "{path:?}");
+    assert!(path.critical_load_factor.is_none());
+    let start = path.samples[0][1];
+    assert!(
+        path.samples
+            .iter()
+            .all(|s| (s[1] / start - 1.0).abs() < 1e-3),
+        "{path:?}"
+    );
+
+    let mut c = scene(
+        steel(0.005),
+        vec![rod("c", vec![[0.0; 3], [0.0, 0.0, 1.0]], 32)],
+    );
+    c.supports = vec![support("c", 0, SupportKind::Clamp)];
+    c.loads = vec![force("c", [0.5, 0.0, -200.0])];
+    let b = buckle(&c, 2, false, None, &Limits::NONE).unwrap_or_else(|_| panic!());
+    let path = b.json.path.as_ref().unwrap();
+    println!("imperfect column: {path:?}");
+    assert_eq!(path.kind, "imperfect_bifurcation", "{path:?}");
+    let least = path
+        .samples
+        .iter()
+        .map(|s| s[1])
+        .fold(f64::INFINITY, f64::min);
+    assert!(least < 0.5 * path.samples[0][1], "{path:?}");
+}

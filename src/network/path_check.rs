@@ -20,11 +20,12 @@ pub enum PathKind {
     Bifurcation,
     /// The lowest eigenvalue, falling, extrapolated to zero from below.
     Crossing,
-    /// The lowest eigenvalue falls and rises again without crossing zero: the path turns
-    /// smoothly (an imperfect bifurcation); no critical factor.
+    /// The lowest eigenvalue falls below half its unloaded value and rises again without
+    /// crossing zero: the path turns smoothly (an imperfect bifurcation); no critical factor.
     Imperfect,
-    /// The lowest eigenvalue does not fall toward zero along the path: the loads do not make
-    /// the structure buckle there, and the linear factor is no buckling load.
+    /// The lowest eigenvalue does not fall toward zero along the path, or dips by less than
+    /// half and rises again: the loads do not make the structure buckle there, and the linear
+    /// factor is no buckling load.
     NoBuckling,
     /// A path solve failed or the search ran out of solves: undecided.
     Unresolved,
@@ -134,6 +135,20 @@ fn search(
                 continue;
             }
             // Rising even over the smallest increment: the eigenvalue has a positive minimum.
+            // A dip to less than half the unloaded stiffness is a buckling mode the loads
+            // soften and the path turns past (imperfect); a shallower one is a stiffness the
+            // loads barely touch, no buckling at all.
+            let start = out.samples[0].1;
+            if f0 > IMPERFECT_DIP * start {
+                return Err((
+                    PathKind::NoBuckling,
+                    format!(
+                        "the lowest eigenvalue stays above {IMPERFECT_DIP} of its unloaded value \
+                         along the path (from {start:.3e} N/m to at least {f0:.3e} N/m, at load \
+                         factor {lam:.6e}, then rising): no buckling there"
+                    ),
+                ));
+            }
             return Err((
                 PathKind::Imperfect,
                 format!(
@@ -171,6 +186,10 @@ fn search(
         "no crossing within {PATH_SOLVES} path solves"
     )))
 }
+
+/// The share of its unloaded value that the lowest eigenvalue must fall below, before it rises
+/// again, for the path to be an imperfect bifurcation rather than no buckling at all.
+const IMPERFECT_DIP: f64 = 0.5;
 
 /// Path solves of `critical_on_path` before it gives up.
 const PATH_SOLVES: usize = 30;
