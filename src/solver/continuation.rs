@@ -5,7 +5,7 @@ use std::time::{Duration, Instant};
 
 use super::linalg::{AnalysisCache, SparseCholesky};
 use super::newton::{Limits, Newton, Outcome};
-use super::path_events::{bifurcation, Judged};
+use super::path_events::{bifurcation, Judged, PathEvent};
 use super::problem::NewtonProblem;
 use super::qp::StepQp;
 use super::settings::{ConstraintReport, NewtonReport, NewtonSettings};
@@ -385,13 +385,14 @@ impl Path {
                         let refinable = !last_chance
                             && next - self.lam > SNAP_BRACKET / self.steps as f64
                             && st.report.iterations - its_before + ATTEMPT_CAP < s.max_iterations;
-                        if refinable && snap_of(st, p, ends, (start, predicted), turns).is_some() {
+                        let snap = snap_of(st, p, ends, (start, predicted), turns);
+                        if refinable && snap.is_some() {
                             st.report.retries += 1;
                             p.restore(&saved);
                             self.inc = (0.25 * (next - self.lam)).max(MIN_INCREMENT);
                             continue;
                         }
-                        judge_substep(st, p, (&saved, ends), (start, predicted), turns);
+                        judge_substep(st, p, (&saved, ends), snap, turns.1);
                     }
                     st.report.substeps += 1;
                     if prev.len() == HISTORY {
@@ -419,10 +420,6 @@ impl Path {
     }
 }
 
-/// Records the path event of a converged sub-step between the load factors `ends`, if any: a
-/// snap, else a bifurcation where the saddle escape ran (located from the curvature of its
-/// direction at the sub-step's start, `saved`). `turns`: the regularized iterations and saddle
-/// escapes counted before the sub-step.
 /// Positions of the whole linear response to the increment from the state `from` (Newton's
 /// step `d` after `tangent_predict`), without moving the state.
 fn linear_response<P: NewtonProblem>(
@@ -439,14 +436,17 @@ fn linear_response<P: NewtonProblem>(
     x
 }
 
-/// The snap that [`judge_substep`] would record for a converged sub-step, if any.
+/// The snap of a converged sub-step, if any: judged only where no saddle escape ran in it or in
+/// the sub-step before (`judge_substep`: what a state does while it leaves a bifurcation
+/// belongs to that bifurcation). `turns`: the regularized iterations and saddle escapes counted
+/// before the sub-step.
 fn snap_of<P: NewtonProblem>(
     st: &Newton,
     p: &P,
     ends: (f64, f64),
     (start, predicted): (&[[f64; 3]], &[[f64; 3]]),
     turns: (usize, usize),
-) -> Option<super::path_events::PathEvent> {
+) -> Option<PathEvent> {
     let escapes = st.report.saddle_escapes - turns.1;
     if escapes > 0 || st.leaving_path {
         return None;
@@ -464,35 +464,25 @@ fn snap_of<P: NewtonProblem>(
     .snap()
 }
 
+/// Records the path event of a converged sub-step between the load factors `ends`: its `snap`
+/// ([`snap_of`]), else a bifurcation where the saddle escape ran (located from the curvature of
+/// its direction at the sub-step's start, `saved`). `escapes_before`: the saddle escapes
+/// counted before the sub-step.
 fn judge_substep<P: NewtonProblem>(
     st: &mut Newton,
     p: &mut P,
     (saved, ends): (&P::Snapshot, (f64, f64)),
-    (start, predicted): (&[[f64; 3]], &[[f64; 3]]),
-    turns: (usize, usize),
+    snap: Option<PathEvent>,
+    escapes_before: usize,
 ) {
-    let Some(end) = p.unknown_positions() else {
-        return;
-    };
-    let judged = Judged {
-        from: ends.0,
-        to: ends.1,
-        start,
-        predicted,
-        end: &end,
-        regularized: st.report.regularized_iterations - turns.0,
-        escapes: st.report.saddle_escapes - turns.1,
-    };
     // Sub-steps that escape one after another leave the same bifurcation (the new branch is
     // shallow near it, and the next prediction may fall back onto the old one): one event, and
     // what the state does while it leaves (a column's √ growth, an arch's snap to its inverted
     // state) is that bifurcation's consequence, not another event.
-    let leaving = judged.escapes > 0;
+    let leaving = st.report.saddle_escapes > escapes_before;
     let was_leaving = std::mem::replace(&mut st.leaving_path, leaving);
     if !leaving && !was_leaving {
-        if let Some(e) = judged.snap() {
-            st.report.path_events.push(e);
-        }
+        st.report.path_events.extend(snap);
         return;
     }
     let Some((v, at_end)) = st.escaped.take().filter(|_| leaving && !was_leaving) else {
