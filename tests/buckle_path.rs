@@ -78,8 +78,8 @@ fn a_clean_bifurcation_has_its_path_value_and_a_stable_path_none() {
 /// A fixed-base portal (columns 3 m, beam 4 m, steel tubes r = 5 cm, rigid corners) under a
 /// 10 kN lateral load at a corner: the load puts the columns in ±H·h/L of axial force, about 1 %
 /// of their Euler loads even at the linear factor (3.18), so the stiffness hardly changes along
-/// the path (the lowest eigenvalue moves by under 0.1 %): "no_buckling", no critical factor (it
-/// was "imperfect_bifurcation" from a 0.03 % dip). A column whose axial load carries a small
+/// the path (the lowest eigenvalue moves by under 0.1 %): "no_buckling", no critical factor (a
+/// 0.03 % dip is no imperfect bifurcation). A column whose axial load carries a small
 /// lateral one, by contrast, is softened to a fraction of its stiffness before its path turns:
 /// "imperfect_bifurcation".
 #[test]
